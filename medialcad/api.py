@@ -1,0 +1,159 @@
+"""Public entry points: orchestration only."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from medialcad.errors import InputError, SelfIntersectingBoundaryError
+from medialcad.frame import Frame
+from medialcad.mat2d.graph import Branch, MedialGraph, Node, NodeKind
+
+__all__ = ["ANGLE_TOL", "MedialAxis2D", "medial_axis_2d"]
+
+ANGLE_TOL = 1e-6
+"""Joints whose tangents turn by less than this (radians) are tangent-continuous."""
+
+
+@dataclass(frozen=True)
+class MedialAxis2D:
+    """The medial axis transform of a planar face.
+
+    Attributes:
+        graph: the medial graph (nodes, branches, footpoints, splines).
+        face: the input face as a ``TopoDS_Face``.
+    """
+
+    graph: MedialGraph
+    face: Any
+
+    @property
+    def nodes(self) -> tuple[Node, ...]:
+        return self.graph.nodes
+
+    @property
+    def branches(self) -> tuple[Branch, ...]:
+        return self.graph.branches
+
+    @property
+    def frame(self) -> Frame:
+        return self.graph.frame
+
+    @property
+    def tol(self) -> float:
+        return self.graph.tol
+
+    @property
+    def rmax(self) -> float:
+        return self.graph.rmax
+
+    @property
+    def branch_points(self) -> tuple[Node, ...]:
+        return tuple(n for n in self.nodes if n.kind is NodeKind.BRANCH_POINT)
+
+    @property
+    def end_points(self) -> tuple[Node, ...]:
+        return tuple(n for n in self.nodes if n.kind is not NodeKind.BRANCH_POINT)
+
+    def sample(self, per_branch: int = 50) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Points of the fitted medial axis in model space and their radii.
+
+        Returns ``(points (N, 3), radius (N,))``: ``per_branch`` points evaluated on each
+        branch's spline plus every node.
+        """
+        pts, rad = [], []
+        for b in self.branches:
+            lo, hi = b.spline.domain
+            v = b.spline(np.linspace(lo, hi, per_branch))
+            pts.append(v[:, :2])
+            rad.append(v[:, 2])
+        for n in self.nodes:
+            pts.append(n.point_2d[None, :])
+            rad.append(np.array([n.radius]))
+        if not pts:
+            return np.zeros((0, 3)), np.zeros(0)
+        return self.frame.to_3d(np.vstack(pts)), np.concatenate(rad)
+
+    def to_compound(self) -> Any:
+        """A ``TopoDS_Compound`` of B-spline edges (one per branch) and vertices (isolated
+        nodes), in the face's plane in model space."""
+        from medialcad.occ.build import bspline_curve, compound, edge_between, vertex
+
+        verts = [vertex(n.point) for n in self.nodes]
+        used: set[int] = set()
+        shapes: list[Any] = []
+        for b in self.branches:
+            poles = self.frame.to_3d(b.spline.coeffs[:, :2])
+            curve = bspline_curve(b.spline.knots, poles, b.spline.degree)
+            v0 = verts[b.start] if b.start is not None else None
+            v1 = verts[b.end] if b.end is not None else None
+            if b.start is not None and b.end is not None:
+                used.update((b.start, b.end))
+            shapes.append(edge_between(curve, v0, v1))
+        shapes += [v for i, v in enumerate(verts) if i not in used]
+        return compound(shapes)
+
+
+def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
+    """The exact 2D medial axis transform of a planar face.
+
+    Args:
+        face: a ``TopoDS_Face``, a cadquery ``Face``/``Workplane`` holding one face, or a
+            build123d ``Face``, in any plane anywhere in space.
+        tol: geometric tolerance of the fitted branches; default ``1e-5`` times the
+            bounding-box diagonal of the face.
+
+    Raises:
+        NotAFaceError, NonPlanarFaceError, OpenWireError, SelfIntersectingBoundaryError,
+        DegenerateFaceError: the input cannot be handled.
+        ComputationError: an internal failure.
+    """
+    from medialcad.mat2d.boundary import build_boundary
+    from medialcad.mat2d.trace import TraceSettings, trace_medial_graph
+    from medialcad.occ.face2d import planar_face
+
+    pf = planar_face(face)
+    tol_abs = float(tol) if tol is not None else 1e-5 * pf.diag
+    if not np.isfinite(tol_abs) or tol_abs <= 0:
+        raise InputError(f"tol must be a positive number, got {tol!r}")
+    boundary = build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=ANGLE_TOL)
+    _check_simple(boundary)
+    settings = TraceSettings(tol=tol_abs, spacing=pf.diag / 200.0)
+    graph = trace_medial_graph(boundary, pf.frame, settings)
+    return MedialAxis2D(graph, pf.face)
+
+
+def _check_simple(boundary: Any) -> None:
+    """Refuse boundaries whose loops cross (OCC's checker misses some of these)."""
+    from medialcad.mat2d.boundary import Boundary
+
+    assert isinstance(boundary, Boundary)
+    segs = []
+    for e in boundary.elements:
+        if e.piece is None:
+            continue
+        t = np.linspace(e.piece.t0, e.piece.t1, 33)
+        p = e.piece.curve.point(t)
+        for a, b in zip(p[:-1], p[1:], strict=True):
+            segs.append((a, b, e.index))
+    if len(segs) > 20000:
+        return
+    a = np.array([s[0] for s in segs])
+    b = np.array([s[1] for s in segs])
+    idx = np.array([s[2] for s in segs])
+    d = b - a
+    n = len(segs)
+    for i in range(n):
+        # proper crossings with segments of other elements that are not neighbours
+        u = a - a[i]
+        den = d[i, 0] * d[:, 1] - d[i, 1] * d[:, 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ti = (u[:, 0] * d[:, 1] - u[:, 1] * d[:, 0]) / den
+            tj = (u[:, 0] * d[i, 1] - u[:, 1] * d[i, 0]) / den
+        hit = (np.abs(den) > 1e-14) & (ti > 1e-6) & (ti < 1 - 1e-6) & (tj > 1e-6) & (tj < 1 - 1e-6)
+        hit &= idx != idx[i]
+        if np.any(hit):
+            raise SelfIntersectingBoundaryError("the boundary of the face intersects itself")

@@ -1,0 +1,67 @@
+"""One error hierarchy for medialcad.
+
+Every failure a user can see is a :class:`MedialCadError`. Input problems (the shape
+cannot be handled) derive from :class:`InputError`; failures of our own computation or of
+OpenCascade derive from :class:`ComputationError`. The CLI maps ``InputError`` to exit
+code 2 and everything else to exit code 1.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "ComputationError",
+    "DegenerateFaceError",
+    "InputError",
+    "MedialCadError",
+    "NonPlanarFaceError",
+    "NotAFaceError",
+    "OCCError",
+    "OpenWireError",
+    "ReadError",
+    "SelfIntersectingBoundaryError",
+    "UnsupportedGeometryError",
+]
+
+
+class MedialCadError(Exception):
+    """Root of every error raised by medialcad."""
+
+
+class InputError(MedialCadError):
+    """The input cannot be handled (bad file, bad shape, unsupported geometry)."""
+
+
+class NotAFaceError(InputError):
+    """The object given is not a single face."""
+
+
+class NonPlanarFaceError(InputError):
+    """The face does not lie on a plane."""
+
+
+class OpenWireError(InputError):
+    """A boundary loop of the face is not closed."""
+
+
+class SelfIntersectingBoundaryError(InputError):
+    """The boundary of the face intersects itself."""
+
+
+class DegenerateFaceError(InputError):
+    """The face has (near) zero area or a degenerate boundary."""
+
+
+class UnsupportedGeometryError(InputError):
+    """A boundary curve type that cannot be converted to an exact representation."""
+
+
+class ReadError(InputError):
+    """A file could not be read (missing, empty, not STEP/BREP, no usable shape)."""
+
+
+class ComputationError(MedialCadError):
+    """The computation failed on a valid input (an internal failure)."""
+
+
+class OCCError(ComputationError):
+    """An OpenCascade call failed (``Standard_Failure``, ``IsDone() == False``)."""

@@ -1,0 +1,213 @@
+"""The boundary of a planar face as medial-axis elements on a loop coordinate.
+
+Each loop is oriented with the face on its left (outer loop counter-clockwise, holes
+clockwise), so the inward normal is the tangent turned left and the signed curvature is
+positive where the boundary is convex. The elements are the edges and the reflex
+vertices (with their cone of normals). Every element owns an interval of its loop's
+coordinate ``s`` (edges: their length, mapped linearly to the curve parameter; reflex
+vertices: their normal angle times a length scale), so a boundary point and its normal
+are a function of ``(loop, s)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from medialcad.errors import DegenerateFaceError, OpenWireError
+from medialcad.mat2d.curves import Curve
+
+__all__ = ["Boundary", "EdgePiece", "build_boundary"]
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+
+@dataclass(frozen=True)
+class EdgePiece:
+    """An edge of a loop, traversed from parameter ``t0`` to ``t1`` (either order)."""
+
+    curve: Curve
+    t0: float
+    t1: float
+    edge_index: int
+
+
+@dataclass(frozen=True)
+class Element:
+    """A medial element: an oriented edge (``piece``) or a reflex vertex (``vertex``)."""
+
+    index: int
+    loop: int
+    s0: float
+    length: float  # extent on the loop coordinate
+    piece: EdgePiece | None = None
+    vertex: FloatArray | None = None
+    theta0: float = 0.0  # reflex vertex: normal angle at s0 (decreasing along s)
+    theta1: float = 0.0
+
+    @property
+    def is_vertex(self) -> bool:
+        return self.vertex is not None
+
+
+@dataclass(frozen=True)
+class Corner:
+    """A vertex between two consecutive edges of a loop."""
+
+    loop: int
+    s: float
+    point: FloatArray
+    turn: float  # signed turning angle of the tangent (>0 convex, <0 reflex)
+
+
+@dataclass(frozen=True)
+class Boundary:
+    elements: tuple[Element, ...]
+    loop_lengths: tuple[float, ...]
+    corners: tuple[Corner, ...]
+    diag: float
+    angle_scale: float  # length on s per radian of a reflex vertex
+
+    # -- evaluation -------------------------------------------------------------
+    def element_at(self, loop: int, s: float) -> Element:
+        for e in self.elements:
+            if e.loop == loop and e.s0 <= s <= e.s0 + e.length:
+                return e
+        raise ValueError("s outside loop")
+
+    def param_of(self, e: Element, s: FloatArray) -> FloatArray:
+        """Curve parameter (edge) or normal angle (vertex) at loop coordinate ``s``."""
+        f = (np.asarray(s, dtype=float) - e.s0) / e.length
+        if e.piece is not None:
+            return e.piece.t0 + f * (e.piece.t1 - e.piece.t0)
+        return e.theta0 + f * (e.theta1 - e.theta0)
+
+    def s_of(self, e: Element, param: FloatArray) -> FloatArray:
+        """Inverse of :meth:`param_of`."""
+        p = np.asarray(param, dtype=float)
+        if e.piece is not None:
+            f = (p - e.piece.t0) / (e.piece.t1 - e.piece.t0)
+        else:
+            f = (p - e.theta0) / (e.theta1 - e.theta0)
+        return e.s0 + np.clip(f, 0.0, 1.0) * e.length
+
+    def frame_at(self, e: Element, param: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Boundary point, unit inward normal and signed curvature at ``param``."""
+        p = np.atleast_1d(np.asarray(param, dtype=float))
+        if e.piece is not None:
+            pt, d1, d2 = e.piece.curve.derivs(p)
+            sense = 1.0 if e.piece.t1 > e.piece.t0 else -1.0
+            speed = np.linalg.norm(d1, axis=1)
+            tan = sense * d1 / speed[:, None]
+            nrm = np.column_stack([-tan[:, 1], tan[:, 0]])
+            k = sense * (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / speed**3
+            return pt, nrm, k
+        assert e.vertex is not None
+        pt = np.broadcast_to(e.vertex, (len(p), 2)).copy()
+        nrm = np.column_stack([np.cos(p), np.sin(p)])
+        return pt, nrm, np.full(len(p), -np.inf)  # reflex: never a curvature bound
+
+
+def _signed_area(pts: FloatArray) -> float:
+    x, y = pts[:, 0], pts[:, 1]
+    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
+def _loop_polyline(loop: list[EdgePiece], n: int = 64) -> FloatArray:
+    pts = [p.curve.point(np.linspace(p.t0, p.t1, n, endpoint=False)) for p in loop]
+    return np.vstack(pts)
+
+
+def _tangent(piece: EdgePiece, at_end: bool) -> FloatArray:
+    t = piece.t1 if at_end else piece.t0
+    _, d1, _ = piece.curve.derivs([t])
+    v = d1[0] * (1.0 if piece.t1 > piece.t0 else -1.0)
+    return np.asarray(v / np.linalg.norm(v))
+
+
+def _reverse(loop: list[EdgePiece]) -> list[EdgePiece]:
+    return [EdgePiece(p.curve, p.t1, p.t0, p.edge_index) for p in reversed(loop)]
+
+
+def _piece_length(p: EdgePiece) -> float:
+    t = np.linspace(p.t0, p.t1, 257)
+    pts = p.curve.point(t)
+    return float(np.sum(np.linalg.norm(np.diff(pts, axis=0), axis=1)))
+
+
+def build_boundary(
+    loops: list[list[EdgePiece]], gap_tol: float, angle_tol: float
+) -> Boundary:
+    """Orient the loops, classify the corners and lay out the elements.
+
+    Args:
+        loops: connected edge pieces of each loop (any orientation, any loop first).
+        gap_tol: largest gap allowed between consecutive pieces.
+        angle_tol: turning angles below this (radians) are tangent-continuous joins.
+
+    Raises:
+        OpenWireError: consecutive pieces do not meet.
+        DegenerateFaceError: a loop with (near) zero area or zero length.
+    """
+    polys = [_loop_polyline(lp) for lp in loops]
+    allpts = np.vstack(polys)
+    diag = float(np.linalg.norm(allpts.max(axis=0) - allpts.min(axis=0)))
+    if diag <= 0.0:
+        raise DegenerateFaceError("the face has zero size")
+    areas = [_signed_area(p) for p in polys]
+    outer = int(np.argmax(np.abs(areas)))
+    if abs(areas[outer]) <= (1e-9 * diag) ** 2 * 1e3:
+        raise DegenerateFaceError("the face has (near) zero area")
+    oriented: list[list[EdgePiece]] = []
+    for i, lp in enumerate(loops):
+        want_ccw = i == outer
+        if abs(areas[i]) <= 1e-12 * diag**2:
+            raise DegenerateFaceError(f"boundary loop {i} encloses no area")
+        oriented.append(lp if (areas[i] > 0) == want_ccw else _reverse(lp))
+    # keep the outer loop first: loop ids are stable and meaningful
+    order = [outer] + [i for i in range(len(oriented)) if i != outer]
+    oriented = [oriented[i] for i in order]
+
+    angle_scale = 0.05 * diag
+    elements: list[Element] = []
+    corners: list[Corner] = []
+    loop_lengths: list[float] = []
+    for li, lp in enumerate(oriented):
+        s = 0.0
+        for j, piece in enumerate(lp):
+            length = _piece_length(piece)
+            if length <= 1e-12 * diag:
+                raise DegenerateFaceError(f"edge {piece.edge_index} has zero length")
+            elements.append(Element(len(elements), li, s, length, piece=piece))
+            s += length
+            nxt = lp[(j + 1) % len(lp)]
+            end = piece.curve.point([piece.t1])[0]
+            start = nxt.curve.point([nxt.t0])[0]
+            if np.linalg.norm(end - start) > gap_tol:
+                raise OpenWireError(
+                    f"boundary loop {li} is open: gap of {np.linalg.norm(end - start):.3g} "
+                    f"after edge {piece.edge_index}"
+                )
+            ta, tb = _tangent(piece, True), _tangent(nxt, False)
+            turn = float(np.arctan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb))
+            vtx = 0.5 * (end + start)
+            if abs(turn) <= angle_tol:
+                continue
+            if abs(abs(turn) - np.pi) < 1e-9:
+                raise DegenerateFaceError(f"cusp (zero angle) at {vtx} in loop {li}")
+            corners.append(Corner(li, s, vtx, turn))
+            if turn < 0:  # reflex: the normal sweeps clockwise from na to nb
+                na = np.array([-ta[1], ta[0]])
+                th0 = float(np.arctan2(na[1], na[0]))
+                length_v = -turn * angle_scale
+                elements.append(
+                    Element(
+                        len(elements), li, s, length_v, vertex=vtx, theta0=th0, theta1=th0 + turn
+                    )
+                )
+                s += length_v
+        loop_lengths.append(s)
+    return Boundary(tuple(elements), tuple(loop_lengths), tuple(corners), diag, angle_scale)

@@ -1,0 +1,126 @@
+"""Exact planar curves as numpy data, evaluated vectorized with two derivatives.
+
+These mirror OCC's ``Geom2d`` curves one to one (same parameterization), so a
+parameter computed here is the OCC parameter of the edge's curve in the face frame.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import BSpline
+
+__all__ = ["CircleCurve", "Curve", "EllipseCurve", "LineCurve", "NurbsCurve"]
+
+FloatArray = NDArray[np.float64]
+Derivs = tuple[FloatArray, FloatArray, FloatArray]
+
+
+class Curve:
+    """Base: ``derivs(t)`` returns ``(point, first, second)`` each ``(n, 2)``."""
+
+    def derivs(self, t: ArrayLike) -> Derivs:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def point(self, t: ArrayLike) -> FloatArray:
+        return self.derivs(t)[0]
+
+    @property
+    def constant_curvature(self) -> float | None:
+        """Unsigned curvature if constant along the curve (lines 0, circles 1/R), else None."""
+        return None
+
+
+@dataclass(frozen=True)
+class LineCurve(Curve):
+    origin: FloatArray
+    direction: FloatArray  # unit
+
+    def derivs(self, t: ArrayLike) -> Derivs:
+        tt = np.atleast_1d(np.asarray(t, dtype=float))[:, None]
+        p = self.origin + tt * self.direction
+        d1 = np.broadcast_to(self.direction, p.shape).copy()
+        return p, d1, np.zeros_like(p)
+
+    @property
+    def constant_curvature(self) -> float | None:
+        return 0.0
+
+
+@dataclass(frozen=True)
+class CircleCurve(Curve):
+    center: FloatArray
+    radius: float
+    xaxis: FloatArray  # unit
+    yaxis: FloatArray  # unit; may be clockwise of xaxis (indirect frame)
+
+    def derivs(self, t: ArrayLike) -> Derivs:
+        tt = np.atleast_1d(np.asarray(t, dtype=float))[:, None]
+        c, s = np.cos(tt), np.sin(tt)
+        r = self.radius
+        p = self.center + r * (c * self.xaxis + s * self.yaxis)
+        d1 = r * (-s * self.xaxis + c * self.yaxis)
+        d2 = -r * (c * self.xaxis + s * self.yaxis)
+        return p, d1, d2
+
+    @property
+    def constant_curvature(self) -> float | None:
+        return 1.0 / self.radius
+
+
+@dataclass(frozen=True)
+class EllipseCurve(Curve):
+    center: FloatArray
+    major: float
+    minor: float
+    xaxis: FloatArray
+    yaxis: FloatArray
+
+    def derivs(self, t: ArrayLike) -> Derivs:
+        tt = np.atleast_1d(np.asarray(t, dtype=float))[:, None]
+        c, s = np.cos(tt), np.sin(tt)
+        ax, ay = self.major * self.xaxis, self.minor * self.yaxis
+        p = self.center + c * ax + s * ay
+        d1 = -s * ax + c * ay
+        d2 = -c * ax - s * ay
+        return p, d1, d2
+
+
+@dataclass(frozen=True)
+class NurbsCurve(Curve):
+    """A clamped (possibly rational) B-spline; periodic curves are unwrapped onto one
+    period ``[knots[deg], knots[-deg-1]]`` and evaluated modulo it."""
+
+    knots: FloatArray
+    poles: FloatArray  # (n, 2)
+    weights: FloatArray  # (n,)
+    degree: int
+    period: float | None = None
+
+    def _splines(self) -> tuple[BSpline, BSpline, BSpline, BSpline, BSpline, BSpline]:
+        cache = self.__dict__.get("_cache")
+        if cache is None:
+            hom = np.column_stack([self.poles * self.weights[:, None], self.weights])
+            a = BSpline(self.knots, hom, self.degree, extrapolate=True)
+            a1 = a.derivative(1) if self.degree >= 1 else None
+            a2 = a.derivative(2) if self.degree >= 2 else None
+            cache = (a, a1, a2)
+            object.__setattr__(self, "_cache", cache)
+        return cache  # type: ignore[return-value]
+
+    def derivs(self, t: ArrayLike) -> Derivs:
+        tt = np.atleast_1d(np.asarray(t, dtype=float))
+        if self.period is not None:
+            lo = self.knots[self.degree]
+            tt = lo + np.mod(tt - lo, self.period)
+        a, a1, a2 = self._splines()
+        h = a(tt)
+        h1 = a1(tt) if a1 is not None else np.zeros_like(h)
+        h2 = a2(tt) if a2 is not None else np.zeros_like(h)
+        w, w1, w2 = h[:, 2:3], h1[:, 2:3], h2[:, 2:3]
+        p = h[:, :2] / w
+        d1 = (h1[:, :2] - w1 * p) / w
+        d2 = (h2[:, :2] - 2.0 * w1 * d1 - w2 * p) / w
+        return p, d1, d2

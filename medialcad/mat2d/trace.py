@@ -1,0 +1,549 @@
+"""Trace the medial axis by marching the medial map along the boundary.
+
+Every boundary point maps to the centre of its maximal tangent disk (:mod:`medial_map`).
+Walking each loop, the partner footpoint moves continuously except at *events*:
+
+- a **jump** of the partner: a branch point (located by bisection on the loop coordinate
+  down to a fraction of the tolerance; its three footpoints are the point and the two
+  partners on either side of the jump);
+- a **convex corner**: an end point with ``r = 0``;
+- a **self-partner point**: the partner meets the point itself at a curvature maximum
+  (or over a whole circular arc): an end point at the centre of curvature, ``r = 1/k``.
+
+Between consecutive events the centres trace one side of a branch; the other side is
+traced from the partner's interval, so each branch is kept once. Nodes from all events
+are merged by position (a degenerate branch point collects all of its footpoints).
+Branches are fitted with splines of ``(x, y, r)`` and refined until exact midpoints lie
+within half the tolerance.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial import cKDTree
+
+from medialcad.errors import ComputationError
+from medialcad.frame import Frame
+from medialcad.mat2d.boundary import Boundary
+from medialcad.mat2d.graph import (
+    BoundaryElement,
+    Branch,
+    ElementKind,
+    Footpoint,
+    MedialGraph,
+    Node,
+    NodeKind,
+)
+from medialcad.mat2d.medial_map import MapSamples, build_candidates, evaluate
+from medialcad.mat2d.spline import Spline, fit_spline
+
+__all__ = ["TraceSettings", "trace_medial_graph"]
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+
+@dataclass(frozen=True)
+class TraceSettings:
+    """Numerical settings of the tracer (all lengths absolute, in model units)."""
+
+    tol: float
+    spacing: float  # initial boundary sample spacing
+    jump_slope: float = 8.0  # partner gap / step above which a step is refined
+    max_fit_rounds: int = 10
+    max_bisection_rounds: int = 64
+
+    @property
+    def eps_s(self) -> float:
+        """Bisection resolution on the loop coordinate."""
+        return 1e-3 * self.tol
+
+
+@dataclass
+class _Event:
+    loop: int
+    s_lo: float
+    s_hi: float
+    kind: NodeKind
+    point: FloatArray
+    radius: float
+    feet: list[tuple[int, float, FloatArray]] = field(default_factory=list)
+    node: int = -1
+
+
+def _initial_samples(boundary: Boundary, spacing: float) -> tuple[IntArray, FloatArray]:
+    loops, ss = [], []
+    for e in boundary.elements:
+        n = max(4, int(np.ceil(e.length / spacing)))
+        if e.piece is not None:
+            # curved edges: at least one sample per 4 degrees of turning
+            t = np.linspace(e.piece.t0, e.piece.t1, 33)
+            _, _, k = boundary.frame_at(e, t)
+            turn = float(np.mean(np.abs(k))) * e.length
+            n = max(n, int(np.ceil(turn / np.radians(4.0))))
+        else:
+            n = max(n, int(np.ceil(e.length / boundary.angle_scale / np.radians(4.0))))
+        f = (np.arange(n) + 0.5) / n
+        # and samples hugging both ends, so corners are approached closely
+        delta = min(1e-3, 0.1 / n)
+        f = np.concatenate([[delta], f, [1 - delta]])
+        ss.append(e.s0 + f * e.length)
+        loops.append(np.full(len(f), e.loop))
+    return np.concatenate(loops).astype(np.int64), np.concatenate(ss)
+
+
+def _cyc(d: FloatArray, length: FloatArray) -> FloatArray:
+    """Wrap a loop-coordinate difference into ``(-L/2, L/2]``."""
+    return np.asarray(d - length * np.round(d / length))
+
+
+class _Tracer:
+    def __init__(self, boundary: Boundary, settings: TraceSettings) -> None:
+        self.b = boundary
+        self.cfg = settings
+        self.cands = build_candidates(boundary, settings.spacing / 2)
+        self.L = np.array(boundary.loop_lengths)
+        self.convex = [
+            (c.loop, c.s % self.L[c.loop], c.point) for c in boundary.corners if c.turn > 0
+        ]
+
+    # -- sampling ------------------------------------------------------------------
+    def eval(self, loop: IntArray, s: FloatArray) -> MapSamples:
+        s = np.mod(s, self.L[loop])
+        return evaluate(self.b, self.cands, loop, s, 1e-3 * self.cfg.tol)
+
+    def frame_s(self, loop: int, s: float) -> tuple[FloatArray, FloatArray, float, int, float]:
+        s = float(s % self.L[loop])
+        e = self.b.element_at(loop, s)
+        t = self.b.param_of(e, np.array([s]))
+        p, n, k = self.b.frame_at(e, t)
+        return p[0], n[0], float(k[0]), e.index, float(t[0])
+
+    # -- events --------------------------------------------------------------------
+    def _corner_between(self, loop: int, s0: float, s1: float) -> int:
+        """Index of a convex corner strictly inside the step ``s0 -> s1`` (cyclic), or -1."""
+        length = self.L[loop]
+        for i, (lp, sv, _) in enumerate(self.convex):
+            if lp != loop:
+                continue
+            a = (sv - s0) % length
+            if 0 < a < (s1 - s0) % length or ((s1 - s0) % length == 0 and a > 0):
+                return i
+        return -1
+
+    def _sp_node(self, loop: int, s0: float, s1: float) -> tuple[FloatArray, float, FloatArray, int, float]:
+        """The centre of curvature at the curvature maximum in ``[s0, s1]`` (golden section)."""
+        length = self.L[loop]
+        a, b = s0, s0 + (s1 - s0) % length
+        if b <= a:
+            b = a + 1e-12
+        g = (np.sqrt(5) - 1) / 2
+        x1, x2 = b - g * (b - a), a + g * (b - a)
+        k1, k2 = self.frame_s(loop, x1)[2], self.frame_s(loop, x2)[2]
+        for _ in range(80):
+            if b - a < 1e-3 * self.cfg.eps_s:
+                break
+            if k1 > k2:
+                b, x2, k2 = x2, x1, k1
+                x1 = b - g * (b - a)
+                k1 = self.frame_s(loop, x1)[2]
+            else:
+                a, x1, k1 = x1, x2, k2
+                x2 = a + g * (b - a)
+                k2 = self.frame_s(loop, x2)[2]
+        p, n, k, ei, t = self.frame_s(loop, 0.5 * (a + b))
+        if k <= 0:
+            raise ComputationError("self-partner point on a non-convex boundary stretch")
+        return p + n / k, 1.0 / k, p, ei, t
+
+    def resolve(self, S: MapSamples) -> tuple[MapSamples, list[_Event], bool]:
+        """Refine the samples until every step is continuous or an event is isolated.
+        Returns the samples, the events, and whether it converged."""
+        cfg = self.cfg
+        for _ in range(cfg.max_bisection_rounds):
+            order = np.lexsort((S.s, S.loop))
+            S = S.take(order)
+            events: list[_Event] = []
+            new_loop: list[int] = []
+            new_s: list[float] = []
+            for lp in range(len(self.L)):
+                idx = np.nonzero(S.loop == lp)[0]
+                if len(idx) == 0:
+                    continue
+                self._loop_events(S, idx, lp, events, new_loop, new_s)
+            if not new_s:
+                return S, events, True
+            S = MapSamples.concat([S, self.eval(np.array(new_loop), np.array(new_s))])
+        return S, events, False
+
+    def _loop_events(
+        self,
+        S: MapSamples,
+        idx: IntArray,
+        lp: int,
+        events: list[_Event],
+        new_loop: list[int],
+        new_s: list[float],
+    ) -> None:
+        cfg = self.cfg
+        length = self.L[lp]
+        nxt = np.roll(idx, -1)
+        s0, s1 = S.s[idx], S.s[nxt]
+        ds = (s1 - s0) % length
+        if len(idx) == 1:
+            ds = np.array([length])
+        same_loop = S.partner_loop[idx] == S.partner_loop[nxt]
+        plen = self.L[S.partner_loop[idx]]
+        gap = np.where(
+            same_loop, np.abs(_cyc(S.partner_s[nxt] - S.partner_s[idx], plen)), np.inf
+        )
+        d0 = np.where(S.partner_loop[idx] == lp, _cyc(S.partner_s[idx] - s0, length), np.inf)
+        d1 = np.where(S.partner_loop[nxt] == lp, _cyc(S.partner_s[nxt] - s1, length), -np.inf)
+        self_ = S.is_self
+        # convex corners: one event each, at the vertex
+        for lpc, sv, pt in self.convex:
+            if lpc == lp:
+                events.append(_Event(lp, sv, sv, NodeKind.CONVEX_VERTEX, pt, 0.0, [(-1, 0.0, pt)]))
+        # runs of self samples: one curvature-centre event each
+        k = 0
+        n = len(idx)
+        start_run = [
+            j for j in range(n) if self_[idx[j]] and not self_[idx[(j - 1) % n]]
+        ]
+        if n and all(self_[idx]):
+            start_run = [0]
+        for j0 in start_run:
+            j1 = j0
+            while self_[idx[(j1 + 1) % n]] and (j1 + 1) % n != j0:
+                j1 += 1
+            lo_s, hi_s = S.s[idx[j0]], S.s[idx[j1 % n]]
+            if all(self_[idx]):
+                lo_s, hi_s = 0.0, length
+            c, r, p, ei, t = self._sp_node(lp, lo_s, hi_s)
+            events.append(_Event(lp, lo_s, hi_s, NodeKind.CURVATURE_CENTRE, c, r, [(ei, t, p)]))
+        for j in range(n if n > 1 else 0):
+            i0, i1 = idx[j], nxt[j]
+            if self_[i0] or self_[i1]:
+                continue
+            if self._corner_between(lp, s0[j], s1[j]) >= 0:
+                continue
+            slope_gap = gap[j] > cfg.jump_slope * ds[j] + cfg.tol
+            if slope_gap:
+                if ds[j] > cfg.eps_s:
+                    new_loop.append(lp)
+                    new_s.append(s0[j] + 0.5 * ds[j])
+                    continue
+                c = 0.5 * (S.centre[i0] + S.centre[i1])
+                r = 0.5 * (S.radius[i0] + S.radius[i1])
+                feet = [
+                    (int(S.element[i0]), float(S.param[i0]), S.foot[i0]),
+                    (int(S.partner_element[i0]), float(S.partner_param[i0]), S.partner_point[i0]),
+                    (int(S.partner_element[i1]), float(S.partner_param[i1]), S.partner_point[i1]),
+                ]
+                events.append(
+                    _Event(lp, s0[j], s0[j] + ds[j], NodeKind.BRANCH_POINT, c, r, feet)
+                )
+                continue
+            if d0[j] > 0 and d1[j] < 0 and d0[j] - d1[j] <= 3 * ds[j] + cfg.tol:
+                c, r, p, ei, t = self._sp_node(lp, s0[j], s0[j] + ds[j])
+                events.append(
+                    _Event(lp, s0[j], s0[j] + ds[j], NodeKind.CURVATURE_CENTRE, c, r, [(ei, t, p)])
+                )
+        del k
+
+
+def _merge_nodes(events: list[_Event], radius: float) -> int:
+    pts = np.array([e.point for e in events]) if events else np.zeros((0, 2))
+    parent = list(range(len(events)))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    if len(events) > 1:
+        for i, j in cKDTree(pts).query_pairs(radius):
+            parent[find(i)] = find(j)
+    roots: dict[int, int] = {}
+    for i, e in enumerate(events):
+        e.node = roots.setdefault(find(i), len(roots))
+    return len(roots)
+
+
+@dataclass
+class _Interval:
+    loop: int
+    start: _Event | None
+    end: _Event | None
+    samples: IntArray  # indices into S, in loop order
+
+
+def _span(a: _Event, b: _Event, length: float) -> tuple[float, float]:
+    """Start and extent on the loop of the stretch from event ``a`` to event ``b``."""
+    span = (b.s_lo - a.s_hi) % length
+    if a is b and span == 0.0:
+        span = length
+    return a.s_hi, span
+
+
+def _intervals(S: MapSamples, events: list[_Event], L: FloatArray) -> list[_Interval]:
+    out: list[_Interval] = []
+    for lp in range(len(L)):
+        idx = np.nonzero((S.loop == lp) & ~S.is_self)[0]
+        evs = sorted((e for e in events if e.loop == lp), key=lambda e: e.s_lo)
+        if not evs:
+            if len(idx):
+                out.append(_Interval(lp, None, None, idx[np.argsort(S.s[idx])]))
+            continue
+        for a, b in zip(evs, evs[1:] + evs[:1], strict=True):
+            start, span = _span(a, b, L[lp])
+            off = (S.s[idx] - start) % L[lp]
+            sel = idx[off <= span]
+            out.append(_Interval(lp, a, b, sel[np.argsort(off[off <= span])]))
+    return out
+
+
+def _find_interval(intervals: list[_Interval], loop: int, s: float, L: FloatArray) -> int:
+    """The interval of ``loop`` whose stretch contains ``s`` (the most central one)."""
+    best, best_d = -1, -1.0
+    for i, iv in enumerate(intervals):
+        if iv.loop != loop:
+            continue
+        if iv.start is None or iv.end is None:
+            return i
+        start, span = _span(iv.start, iv.end, L[loop])
+        off = (s - start) % L[loop]
+        if off <= span and min(off, span - off) > best_d:
+            best, best_d = i, min(off, span - off)
+    return best
+
+
+def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings) -> MedialGraph:
+    """Compute the medial graph of the boundary (see module docstring)."""
+    tr = _Tracer(boundary, settings)
+    loop, s = _initial_samples(boundary, settings.spacing)
+    S = tr.eval(loop, s)
+    tol = settings.tol
+    for _ in range(settings.max_fit_rounds):
+        S, events, ok = tr.resolve(S)
+        if not ok:
+            raise ComputationError("medial axis events did not converge")
+        n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
+        intervals = _intervals(S, events, tr.L)
+        kept = _dedupe(S, intervals, tr.L)
+        add_loop: list[int] = []
+        add_s: list[float] = []
+        for iv in kept:
+            need = _missing_fit(tr, S, iv, tol)
+            add_loop += [iv.loop] * len(need)
+            add_s += need
+        if not add_s:
+            return _assemble(boundary, frame, tol, S, events, n_nodes, kept)
+        S = MapSamples.concat([S, tr.eval(np.array(add_loop), np.array(add_s))])
+    raise ComputationError("the medial axis did not reach the tolerance")
+
+
+def _dedupe(S: MapSamples, intervals: list[_Interval], L: FloatArray) -> list[_Interval]:
+    kept: list[_Interval] = []
+    for i, iv in enumerate(intervals):
+        if len(iv.samples) == 0:
+            if iv.start is not None and iv.end is not None and iv.start.node != iv.end.node:
+                # no sample between two distinct nodes: only the lower side keeps it
+                kept.append(iv) if _lower_side(iv, intervals, L) else None
+            continue
+        mid = iv.samples[len(iv.samples) // 2]
+        j = _find_interval(intervals, int(S.partner_loop[mid]), float(S.partner_s[mid]), L)
+        if j < 0 or j == i or i < j:
+            kept.append(iv)
+    return kept
+
+
+def _lower_side(iv: _Interval, intervals: list[_Interval], L: FloatArray) -> bool:
+    assert iv.start is not None and iv.end is not None
+    for other in intervals:
+        if other is iv or other.start is None or other.end is None:
+            continue
+        if other.start.node == iv.end.node and other.end.node == iv.start.node:
+            return id(iv) < id(other) if len(other.samples) == 0 else False
+    return True
+
+
+def _branch_arrays(S: MapSamples, iv: _Interval) -> tuple[FloatArray, FloatArray]:
+    pts = [S.centre[iv.samples]]
+    rad = [S.radius[iv.samples]]
+    if iv.start is not None:
+        pts.insert(0, iv.start.point[None, :])
+        rad.insert(0, np.array([iv.start.radius]))
+    if iv.end is not None:
+        pts.append(iv.end.point[None, :])
+        rad.append(np.array([iv.end.radius]))
+    if iv.start is None:  # closed loop
+        pts.append(S.centre[iv.samples[:1]])
+        rad.append(S.radius[iv.samples[:1]])
+    return np.vstack(pts), np.concatenate(rad)
+
+
+def _missing_fit(tr: _Tracer, S: MapSamples, iv: _Interval, tol: float) -> list[float]:
+    """Loop coordinates of exact midpoints that the fitted spline misses by > tol/2."""
+    if len(iv.samples) == 0:
+        return []
+    pts, rad = _branch_arrays(S, iv)
+    spline = fit_spline(np.column_stack([pts, rad]))
+    u = _knots_of(pts)
+    s = S.s[iv.samples]
+    length = tr.L[iv.loop]
+    s_ext = list(s)
+    offs = 1 if iv.start is not None else 0
+    mids: list[float] = []
+    mid_u: list[tuple[float, float]] = []
+    for j in range(len(s_ext) - 1):
+        a, b = s_ext[j], s_ext[j + 1]
+        d = (b - a) % length
+        if d <= tr.cfg.eps_s * 4:
+            continue
+        mids.append(a + 0.5 * d)
+        mid_u.append((u[offs + j], u[offs + j + 1]))
+    if not mids:
+        return []
+    M = tr.eval(np.full(len(mids), iv.loop), np.array(mids))
+    bad: list[float] = []
+    for k, (ua, ub) in enumerate(mid_u):
+        uu = np.linspace(ua, ub, 17)
+        cur = spline(uu)
+        d = np.linalg.norm(cur[:, :2] - M.centre[k], axis=1)
+        j = int(np.argmin(d))
+        if d[j] > 0.5 * tol or abs(cur[j, 2] - M.radius[k]) > 0.5 * tol:
+            bad.append(mids[k])
+    return bad
+
+
+def _knots_of(pts: FloatArray) -> FloatArray:
+    d = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    u = np.concatenate([[0.0], np.cumsum(d)])
+    return u / u[-1] if u[-1] > 0 else np.linspace(0, 1, len(pts))
+
+
+def _assemble(
+    boundary: Boundary,
+    frame: Frame,
+    tol: float,
+    S: MapSamples,
+    events: list[_Event],
+    n_nodes: int,
+    kept: list[_Interval],
+) -> MedialGraph:
+    elements = tuple(
+        BoundaryElement(
+            e.index,
+            ElementKind.REFLEX_VERTEX if e.is_vertex else ElementKind.EDGE,
+            e.loop,
+            e.piece.edge_index if e.piece is not None else _prev_edge(boundary, e.index),
+            e.vertex,
+        )
+        for e in boundary.elements
+    )
+    groups: dict[int, list[_Event]] = {}
+    for ev in events:
+        groups.setdefault(ev.node, []).append(ev)
+    nodes: list[Node] = []
+    for ni in range(n_nodes):
+        evs = groups[ni]
+        kinds = {e.kind for e in evs}
+        kind = (
+            NodeKind.BRANCH_POINT
+            if NodeKind.BRANCH_POINT in kinds
+            else NodeKind.CONVEX_VERTEX
+            if NodeKind.CONVEX_VERTEX in kinds
+            else NodeKind.CURVATURE_CENTRE
+        )
+        pt = np.mean([e.point for e in evs], axis=0)
+        r = float(np.mean([e.radius for e in evs]))
+        feet: list[Footpoint] = []
+        for e in evs:
+            for el, par, fp in e.feet:
+                if all(np.linalg.norm(f.point_2d - fp) > tol for f in feet):
+                    feet.append(Footpoint(el, par, np.asarray(fp, dtype=float)))
+        nodes.append(Node(ni, kind, pt, frame.to_3d(pt), r, tuple(feet)))
+    branches: list[Branch] = []
+    for iv in kept:
+        pts, rad = _branch_arrays(S, iv)
+        if iv.start is not None and iv.end is not None and iv.start.node == iv.end.node:
+            extent = np.linalg.norm(pts - iv.start.point, axis=1).max()
+            if extent <= tol:  # a degenerate stretch between events of one node
+                continue
+        spline: Spline = fit_spline(np.column_stack([pts, rad]))
+        smp = iv.samples
+        a_el, a_par, a_pt = S.element[smp], S.param[smp], S.foot[smp]
+        b_el, b_par, b_pt = S.partner_element[smp], S.partner_param[smp], S.partner_point[smp]
+        if iv.start is not None:
+            f0 = iv.start
+            a_el, a_par, a_pt, b_el, b_par, b_pt = _pad(
+                (a_el, a_par, a_pt, b_el, b_par, b_pt), 0, S, smp, f0
+            )
+        if iv.end is not None:
+            a_el, a_par, a_pt, b_el, b_par, b_pt = _pad(
+                (a_el, a_par, a_pt, b_el, b_par, b_pt), -1, S, smp, iv.end
+            )
+        if iv.start is None:
+            a_el, a_par, a_pt, b_el, b_par, b_pt = (
+                np.concatenate([x, x[:1]]) for x in (a_el, a_par, a_pt, b_el, b_par, b_pt)
+            )
+        branches.append(
+            Branch(
+                len(branches),
+                iv.start.node if iv.start is not None else None,
+                iv.end.node if iv.end is not None else None,
+                pts,
+                rad,
+                a_el.astype(np.int64),
+                a_par,
+                a_pt,
+                b_el.astype(np.int64),
+                b_par,
+                b_pt,
+                spline,
+            )
+        )
+    return MedialGraph(frame, tol, tuple(nodes), tuple(branches), elements)
+
+
+def _pad(arrs: tuple, where: int, S: MapSamples, smp: IntArray, ev: _Event) -> tuple:
+    """Footpoints at an end node: the nearest sample's footpoints moved to the node's."""
+    a_el, a_par, a_pt, b_el, b_par, b_pt = arrs
+    if len(smp):
+        j = smp[0] if where == 0 else smp[-1]
+        vals = (
+            S.element[j : j + 1],
+            S.param[j : j + 1],
+            S.foot[j : j + 1],
+            S.partner_element[j : j + 1],
+            S.partner_param[j : j + 1],
+            S.partner_point[j : j + 1],
+        )
+    else:
+        el, par, fp = ev.feet[0]
+        vals = (
+            np.array([el]),
+            np.array([par]),
+            np.asarray(fp)[None, :],
+            np.array([el]),
+            np.array([par]),
+            np.asarray(fp)[None, :],
+        )
+    if ev.kind is NodeKind.CONVEX_VERTEX:
+        vals = (vals[0], vals[1], ev.point[None, :], vals[3], vals[4], ev.point[None, :])
+    out = []
+    for x, v in zip((a_el, a_par, a_pt, b_el, b_par, b_pt), vals, strict=True):
+        out.append(np.concatenate([v, x]) if where == 0 else np.concatenate([x, v]))
+    return tuple(out)
+
+
+def _prev_edge(boundary: Boundary, index: int) -> int:
+    for e in reversed(boundary.elements[:index]):
+        if e.piece is not None:
+            return e.piece.edge_index
+    return -1

@@ -1,0 +1,283 @@
+"""A planar OCC face as exact 2D curves in its own frame (the only OCP code of the 2D engine).
+
+The frame's origin is the centre of the face's bounding box projected on its plane, so
+faces far from the model origin keep full precision. Each edge's 3D curve is mapped to
+that frame exactly (``GeomAPI.To2d``) and converted to numpy data: lines, circles and
+ellipses in closed form, B-splines/Béziers/conics with their poles, weights and knots;
+offset and other curves are approximated by a B-spline far inside the tolerance.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from OCP.Bnd import Bnd_Box
+from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepCheck import BRepCheck_Analyzer, BRepCheck_ListOfStatus, BRepCheck_Status
+from OCP.BRepTools import BRepTools_WireExplorer
+from OCP.Geom2d import (
+    Geom2d_BSplineCurve,
+    Geom2d_Circle,
+    Geom2d_Curve,
+    Geom2d_Ellipse,
+    Geom2d_Line,
+    Geom2d_OffsetCurve,
+    Geom2d_TrimmedCurve,
+)
+from OCP.Geom2dConvert import Geom2dConvert, Geom2dConvert_ApproxCurve
+from OCP.GeomAbs import GeomAbs_C2
+from OCP.GeomAPI import GeomAPI
+from OCP.GeomLib import GeomLib_IsPlanarSurface
+from OCP.gp import gp_Ax3, gp_Dir, gp_Pln, gp_Pnt
+from OCP.Standard import Standard_Failure
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
+
+from medialcad.errors import (
+    DegenerateFaceError,
+    NonPlanarFaceError,
+    NotAFaceError,
+    OCCError,
+    OpenWireError,
+    SelfIntersectingBoundaryError,
+    UnsupportedGeometryError,
+)
+from medialcad.frame import Frame
+from medialcad.mat2d.boundary import EdgePiece
+from medialcad.mat2d.curves import CircleCurve, Curve, EllipseCurve, LineCurve, NurbsCurve
+
+__all__ = ["PlanarFace", "planar_face", "to_face"]
+
+
+@dataclass(frozen=True)
+class PlanarFace:
+    face: TopoDS_Face
+    frame: Frame
+    loops: list[list[EdgePiece]]
+    edges: list[Any]  # TopoDS_Edge per edge_index
+    diag: float
+    gap_tol: float
+
+
+def to_face(obj: Any) -> TopoDS_Face:
+    """Accept a TopoDS_Face, a cadquery/build123d Face, or a Workplane holding one face."""
+    if obj is None or isinstance(obj, (str, bytes, int, float)):
+        raise NotAFaceError(f"expected a planar face, got {type(obj).__name__}")
+    if hasattr(obj, "vals") and callable(obj.vals):  # cadquery Workplane
+        vals = obj.vals()
+        if len(vals) != 1:
+            raise NotAFaceError(f"expected a Workplane holding one face, it holds {len(vals)}")
+        obj = vals[0]
+    shape = getattr(obj, "wrapped", obj)
+    if not isinstance(shape, TopoDS_Shape) or shape.IsNull():
+        raise NotAFaceError(f"expected a planar face, got {type(obj).__name__}")
+    if shape.ShapeType() == TopAbs_FACE:
+        return TopoDS.Face_s(shape)
+    faces = []
+    exp = TopExp_Explorer(shape, TopAbs_FACE)
+    while exp.More():
+        faces.append(TopoDS.Face_s(exp.Current()))
+        exp.Next()
+    if len(faces) == 1:
+        return faces[0]
+    kind = str(shape.ShapeType()).split("_")[-1].lower()
+    raise NotAFaceError(f"expected one planar face, got a {kind} with {len(faces)} faces")
+
+
+def _bbox(shape: TopoDS_Shape) -> tuple[np.ndarray, np.ndarray]:
+    box = Bnd_Box()
+    BRepBndLib.Add_s(shape, box, False)
+    if box.IsVoid():
+        raise DegenerateFaceError("the face is empty")
+    x0, y0, z0, x1, y1, z1 = box.Get()
+    return np.array([x0, y0, z0]), np.array([x1, y1, z1])
+
+
+def _vec(d: Any) -> np.ndarray:
+    return np.array([d.X(), d.Y(), d.Z()])
+
+
+def _check_valid(face: TopoDS_Face) -> None:
+    ana = BRepCheck_Analyzer(face, True)
+    if ana.IsValid():
+        return
+    statuses: set[str] = set()
+    for kind in (TopAbs_WIRE, TopAbs_EDGE):
+        exp = TopExp_Explorer(face, kind)
+        while exp.More():
+            res = ana.Result(exp.Current())
+            if res is not None:
+                lst: BRepCheck_ListOfStatus = res.StatusOnShape(face)
+                for st in lst:
+                    statuses.add(str(st))
+                lst2 = res.Status()
+                for st in lst2:
+                    statuses.add(str(st))
+            exp.Next()
+    text = " ".join(sorted(statuses))
+    if "SelfIntersectingWire" in text or "IntersectingWires" in text:
+        raise SelfIntersectingBoundaryError("the boundary of the face intersects itself")
+    if "NotClosed" in text or "Disconnected" in text:
+        raise OpenWireError("a boundary loop of the face is not closed")
+    _ = BRepCheck_Status  # statuses other than these are tolerated (checked geometrically later)
+
+
+def _curve_to_numpy(c: Geom2d_Curve, first: float, last: float, approx_tol: float) -> Curve:
+    if isinstance(c, Geom2d_TrimmedCurve):
+        return _curve_to_numpy(c.BasisCurve(), first, last, approx_tol)
+    if isinstance(c, Geom2d_Line):
+        pos = c.Position()
+        loc, d = pos.Location(), pos.Direction()
+        return LineCurve(np.array([loc.X(), loc.Y()]), np.array([d.X(), d.Y()]))
+    if isinstance(c, Geom2d_Circle):
+        ax = c.Position()
+        o, x, y = ax.Location(), ax.XDirection(), ax.YDirection()
+        return CircleCurve(
+            np.array([o.X(), o.Y()]), c.Radius(), np.array([x.X(), x.Y()]), np.array([y.X(), y.Y()])
+        )
+    if isinstance(c, Geom2d_Ellipse):
+        ax = c.Position()
+        o, x, y = ax.Location(), ax.XDirection(), ax.YDirection()
+        return EllipseCurve(
+            np.array([o.X(), o.Y()]),
+            c.MajorRadius(),
+            c.MinorRadius(),
+            np.array([x.X(), x.Y()]),
+            np.array([y.X(), y.Y()]),
+        )
+    if isinstance(c, Geom2d_OffsetCurve):
+        basis = c.BasisCurve()
+        while isinstance(basis, Geom2d_TrimmedCurve):
+            basis = basis.BasisCurve()
+        if isinstance(basis, (Geom2d_Line, Geom2d_Circle)):
+            # exact: offsets of lines and circles are lines and circles
+            base = _curve_to_numpy(basis, first, last, approx_tol)
+            return _offset_exact(base, c.Offset())
+    if isinstance(c, Geom2d_BSplineCurve):
+        return _nurbs(c, trimmed=False, first=first, last=last)
+    trimmed = Geom2d_TrimmedCurve(c, first, last)
+    if not isinstance(c, Geom2d_OffsetCurve):  # Bezier, parabola, hyperbola: exact conversion
+        try:
+            return _nurbs(
+                Geom2dConvert.CurveToBSplineCurve_s(trimmed), trimmed=True, first=first, last=last
+            )
+        except Standard_Failure:
+            pass
+    approx = Geom2dConvert_ApproxCurve(trimmed, approx_tol, GeomAbs_C2, 400, 9)
+    if not approx.HasResult():
+        raise UnsupportedGeometryError(f"cannot approximate a {type(c).__name__} edge")
+    return _nurbs(approx.Curve(), trimmed=True, first=first, last=last)
+
+
+def _offset_exact(base: Curve, offset: float) -> Curve:
+    if isinstance(base, LineCurve):
+        d = base.direction
+        # Geom2d offset direction: d x Z = (dy, -dx)
+        return LineCurve(base.origin + offset * np.array([d[1], -d[0]]), d)
+    assert isinstance(base, CircleCurve)
+    orient = np.sign(base.xaxis[0] * base.yaxis[1] - base.xaxis[1] * base.yaxis[0])
+    radius = base.radius + offset * orient
+    if radius <= 0:
+        raise UnsupportedGeometryError("offset of a circle with non-positive radius")
+    return CircleCurve(base.center, radius, base.xaxis, base.yaxis)
+
+
+class _Reparam(Curve):
+    """A curve whose parameter is an affine function of another's (for converted curves)."""
+
+    def __init__(self, inner: Curve, a: float, b: float) -> None:
+        self.inner, self.a, self.b = inner, a, b  # t_inner = a + b * t
+
+    def derivs(self, t: Any) -> Any:
+        p, d1, d2 = self.inner.derivs(self.a + self.b * np.asarray(t, dtype=float))
+        return p, d1 * self.b, d2 * self.b**2
+
+
+def _nurbs(bs: Geom2d_BSplineCurve, *, trimmed: bool, first: float, last: float) -> Curve:
+    bs = bs.Copy()
+    period = None
+    if bs.IsPeriodic():
+        period = bs.Period()
+        bs.SetNotPeriodic()
+    n = bs.NbPoles()
+    poles = np.array([[bs.Pole(i).X(), bs.Pole(i).Y()] for i in range(1, n + 1)])
+    weights = np.array([bs.Weight(i) for i in range(1, n + 1)])
+    knots = np.array([bs.Knot(i) for i in range(1, bs.NbKnots() + 1)])
+    mults = [bs.Multiplicity(i) for i in range(1, bs.NbKnots() + 1)]
+    flat = np.repeat(knots, mults)
+    curve: Curve = NurbsCurve(flat, poles, weights, bs.Degree(), period)
+    if trimmed:
+        # the converted curve spans its own knot range; map the edge's [first, last] onto it
+        k0, k1 = bs.FirstParameter(), bs.LastParameter()
+        b = (k1 - k0) / (last - first)
+        curve = _Reparam(curve, k0 - b * first, b)
+    return curve
+
+
+def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
+    """Read a planar face into exact 2D curves in its own frame.
+
+    Raises:
+        NotAFaceError, NonPlanarFaceError, OpenWireError, SelfIntersectingBoundaryError,
+        DegenerateFaceError, UnsupportedGeometryError: the face cannot be handled.
+    """
+    face = to_face(obj)
+    lo, hi = _bbox(face)
+    diag = float(np.linalg.norm(hi - lo))
+    if diag <= 0:
+        raise DegenerateFaceError("the face has zero size")
+    try:
+        surf = BRep_Tool.Surface_s(face)
+        checker = GeomLib_IsPlanarSurface(surf, plane_tol if plane_tol else 1e-7 * diag)
+        if not checker.IsPlanar():
+            raise NonPlanarFaceError(
+                f"the face is not planar (its surface is a {type(surf).__name__})"
+            )
+        pln = checker.Plan()
+        _check_valid(face)
+        pos = pln.Position()
+        xdir, ydir = _vec(pos.XDirection()), _vec(pos.YDirection())
+        zdir = np.cross(xdir, ydir)
+        centre = 0.5 * (lo + hi)
+        o = _vec(pos.Location())
+        origin = centre - ((centre - o) @ zdir) * zdir
+        frame = Frame(origin, xdir, ydir)
+        local = gp_Pln(gp_Ax3(gp_Pnt(*origin), gp_Dir(*zdir), gp_Dir(*xdir)))
+        loops: list[list[EdgePiece]] = []
+        edges: list[Any] = []
+        gap_tol = 0.0
+        wexp = TopExp_Explorer(face, TopAbs_WIRE)
+        while wexp.More():
+            wire = TopoDS.Wire_s(wexp.Current())
+            loop: list[EdgePiece] = []
+            it = BRepTools_WireExplorer(wire, face)
+            while it.More():
+                edge = it.Current()
+                if not BRep_Tool.Degenerated_s(edge):
+                    gap_tol = max(gap_tol, BRep_Tool.Tolerance_s(edge))
+                    ad = BRepAdaptor_Curve(edge)
+                    first, last = ad.FirstParameter(), ad.LastParameter()
+                    c3 = BRep_Tool.Curve_s(edge, 0.0, 0.0)
+                    if c3 is None:
+                        raise UnsupportedGeometryError("an edge has no 3D curve")
+                    c2 = GeomAPI.To2d_s(c3, local)
+                    curve = _curve_to_numpy(c2, first, last, 1e-9 * diag)
+                    forward = it.Orientation() != TopAbs_REVERSED
+                    t0, t1 = (first, last) if forward else (last, first)
+                    loop.append(EdgePiece(curve, t0, t1, len(edges)))
+                    edges.append(edge)
+                it.Next()
+            if loop:
+                loops.append(loop)
+            wexp.Next()
+    except Standard_Failure as err:
+        raise OCCError(f"reading the face failed: {err}") from err
+    if not loops:
+        raise DegenerateFaceError("the face has no boundary")
+    # off-plane check of the boundary (a non-planar wire on a "planar" surface)
+    return PlanarFace(face, frame, loops, edges, diag, max(gap_tol * 4, 1e-7 * diag))
