@@ -212,8 +212,8 @@ def evaluate(
         for ei in np.unique(e_i):
             sel = e_i == ei
             rr = r_i[sel]
-            sub = f[rr - c0, cands.starts[ei] : cands.stops[ei]]
-            pair_rows.append(rr)
+            sub = f[rr, cands.starts[ei] : cands.stops[ei]]
+            pair_rows.append(rr + c0)
             pair_elems.append(np.full(len(rr), ei))
             pair_cidx.append(cands.starts[ei] + np.argmin(sub, axis=1))
     rows_all = np.concatenate(pair_rows) if pair_rows else np.zeros(0, dtype=np.int64)
@@ -243,6 +243,24 @@ def evaluate(
             lo2 = np.where(inside & (t0 > tb), tb + 0.5 * (t0 - tb), lo2)
             hi2 = np.where(inside & (t0 < tb), tb + 0.5 * (t0 - tb), hi2)
         t, fv = _refine_on_edge(e, foot[rr], normal[rr], t0, lo2, hi2)
+        if np.linalg.norm(cands.points[first] - cands.points[last]) <= tiny:
+            # a closed edge: a minimum at its seam may lie on the other side of it
+            at_seam = np.nonzero((cj == first) | (cj == last))[0]
+            if len(at_seam):
+                other = np.where(cj[at_seam] == first, last, first)
+                olo = cands.param[np.where(other == first, first, last - 1)]
+                ohi = cands.param[np.where(other == first, first + 1, last)]
+                t_b, f_b = _refine_on_edge(
+                    e,
+                    foot[rr[at_seam]],
+                    normal[rr[at_seam]],
+                    cands.param[other],
+                    np.minimum(olo, ohi),
+                    np.maximum(olo, ohi),
+                )
+                better = f_b < fv[at_seam]
+                t[at_seam[better]] = t_b[better]
+                fv[at_seam[better]] = f_b[better]
         f0 = _f_values(cands.points[cj], foot[rr], normal[rr], tiny)
         worse = ~(fv <= f0)
         t = np.where(worse, t0, t)

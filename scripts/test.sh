@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Everything CI checks: lint, format, types, tests. Sets up ./.venv from scratch if needed.
+set -euo pipefail
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+bash scripts/setup_venv.sh
+
+export MPLBACKEND=Agg
+
+# Lint only the folders that exist (bench/ may be absent in a fresh clone).
+paths=()
+for d in medialcad tests bench; do
+    if [ -d "$d" ]; then paths+=("$d"); fi
+done
+
+echo "== ruff check ${paths[*]}"
+.venv/bin/ruff check "${paths[@]}"
+echo "== ruff format --check"
+.venv/bin/ruff format --check "${paths[@]}"
+echo "== mypy"
+.venv/bin/mypy medialcad
+echo "== pytest"
+.venv/bin/pytest -q "$@"
