@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from medialcad.mat2d.boundary import Boundary, Element
+from medialcad.mat2d.curves import CircleCurve, LineCurve
 
 __all__ = ["Candidates", "MapSamples", "build_candidates", "evaluate"]
 
@@ -30,13 +31,36 @@ _CHUNK_CELLS = 3_000_000
 
 @dataclass(frozen=True)
 class Candidates:
-    """Dense boundary points grouped by element (contiguous, in parameter order)."""
+    """What the global minimum of ``f`` is searched over.
 
-    points: FloatArray  # (K, 2)
+    Lines, circles and reflex vertices are solved in closed form (their tables below);
+    every other curve has dense candidate points (contiguous per element, in parameter
+    order) and a Newton solve on its exact parameterization.
+    """
+
+    points: FloatArray  # (K, 2) candidates of general curves
     element: IntArray  # (K,)
     param: FloatArray  # (K,)
-    starts: IntArray  # (E,) first candidate of each element
-    stops: IntArray  # (E,)
+    starts: IntArray  # (G,) first candidate of each general element
+    stops: IntArray  # (G,)
+    general: IntArray  # (G,) element indices of general curves
+    lines: IntArray  # element indices
+    line_o: FloatArray
+    line_d: FloatArray
+    line_nu: FloatArray
+    line_lo: FloatArray
+    line_hi: FloatArray
+    circles: IntArray
+    circ_c: FloatArray
+    circ_r: FloatArray
+    circ_x: FloatArray
+    circ_y: FloatArray
+    circ_lo: FloatArray
+    circ_hi: FloatArray
+    vertices: IntArray
+    vert_p: FloatArray
+    elem_key: FloatArray  # sorted start keys of all elements (loop offset + s0)
+    loop_offset: FloatArray
 
 
 @dataclass(frozen=True)
@@ -81,35 +105,77 @@ def _edge_params(e: Element, spacing: float) -> FloatArray:
     speed = np.linalg.norm(d1, axis=1)
     turn = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / np.maximum(speed, 1e-300) ** 2
     total_turn = float(np.mean(turn) * abs(p.t1 - p.t0))
-    n = int(np.clip(max(np.ceil(e.length / spacing), np.ceil(total_turn / np.radians(4.0))), 8, 4000))
+    n = int(
+        np.clip(max(np.ceil(e.length / spacing), np.ceil(total_turn / np.radians(4.0))), 8, 4000)
+    )
     return np.linspace(p.t0, p.t1, n + 1)
 
 
 def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
-    """Candidate points for the global minimum of ``f``: every edge densely, every
-    reflex vertex once."""
-    pts, elem, par, starts, stops = [], [], [], [], []
+    """Closed-form tables for lines, circles and reflex vertices; dense candidate points
+    for every other curve."""
+    pts, elem, par, starts, stops, general = [], [], [], [], [], []
+    lines: list[tuple[int, FloatArray, FloatArray, FloatArray, float, float]] = []
+    circles: list[tuple[int, FloatArray, float, FloatArray, FloatArray, float, float]] = []
+    verts: list[tuple[int, FloatArray]] = []
     k = 0
     for e in boundary.elements:
-        if e.piece is not None:
-            t = _edge_params(e, spacing)
-            xy = e.piece.curve.point(t)
-        else:
+        if e.piece is None:
             assert e.vertex is not None
-            t = np.array([e.theta0])
-            xy = e.vertex[None, :]
+            verts.append((e.index, e.vertex))
+            continue
+        c = e.piece.curve
+        lo, hi = sorted((e.piece.t0, e.piece.t1))
+        sense = 1.0 if e.piece.t1 > e.piece.t0 else -1.0
+        if isinstance(c, LineCurve):
+            tan = sense * c.direction
+            lines.append((e.index, c.origin, c.direction, np.array([-tan[1], tan[0]]), lo, hi))
+            continue
+        if isinstance(c, CircleCurve):
+            circles.append((e.index, c.center, c.radius, c.xaxis, c.yaxis, lo, hi))
+            continue
+        t = _edge_params(e, spacing)
         starts.append(k)
         k += len(t)
         stops.append(k)
-        pts.append(xy)
+        pts.append(e.piece.curve.point(t))
         elem.append(np.full(len(t), e.index))
         par.append(t)
+        general.append(e.index)
+    i64 = np.int64
+    lengths = np.array(boundary.loop_lengths)
+    offset = np.concatenate([[0.0], np.cumsum(lengths + 1.0)])[:-1]
+    keys = np.array([offset[e.loop] + e.s0 for e in boundary.elements])
+
+    def col(rows: list, i: int, width: int = 0) -> FloatArray:
+        if not rows:
+            return np.zeros((0, width)) if width else np.zeros(0)
+        return np.array([r[i] for r in rows], dtype=float)
+
     return Candidates(
-        np.vstack(pts),
-        np.concatenate(elem).astype(np.int64),
-        np.concatenate(par),
-        np.array(starts, dtype=np.int64),
-        np.array(stops, dtype=np.int64),
+        points=np.vstack(pts) if pts else np.zeros((0, 2)),
+        element=np.concatenate(elem).astype(i64) if elem else np.zeros(0, dtype=i64),
+        param=np.concatenate(par) if par else np.zeros(0),
+        starts=np.array(starts, dtype=i64),
+        stops=np.array(stops, dtype=i64),
+        general=np.array(general, dtype=i64),
+        lines=np.array([r[0] for r in lines], dtype=i64),
+        line_o=col(lines, 1, 2),
+        line_d=col(lines, 2, 2),
+        line_nu=col(lines, 3, 2),
+        line_lo=col(lines, 4),
+        line_hi=col(lines, 5),
+        circles=np.array([r[0] for r in circles], dtype=i64),
+        circ_c=col(circles, 1, 2),
+        circ_r=col(circles, 2),
+        circ_x=col(circles, 3, 2),
+        circ_y=col(circles, 4, 2),
+        circ_lo=col(circles, 5),
+        circ_hi=col(circles, 6),
+        vertices=np.array([r[0] for r in verts], dtype=i64),
+        vert_p=col(verts, 1, 2),
+        elem_key=keys,
+        loop_offset=offset,
     )
 
 
@@ -151,17 +217,180 @@ def _refine_on_edge(
         lo[idx] = np.where(g < 0, t[idx], lo[idx])
         with np.errstate(divide="ignore", invalid="ignore"):
             tn = t[idx] - g / gp
-        bad = ~np.isfinite(tn) | (gp <= 0) | (tn <= np.minimum(lo[idx], hi[idx])) | (
-            tn >= np.maximum(lo[idx], hi[idx])
+        bad = (
+            ~np.isfinite(tn)
+            | (gp <= 0)
+            | (tn <= np.minimum(lo[idx], hi[idx]))
+            | (tn >= np.maximum(lo[idx], hi[idx]))
         )
         tn = np.where(bad, 0.5 * (lo[idx] + hi[idx]), tn)
-        done = (np.abs(tn - t[idx]) <= 1e-15 * scale) | (g == 0) | (
-            np.abs(hi[idx] - lo[idx]) <= 1e-15 * scale
+        done = (
+            (np.abs(tn - t[idx]) <= 1e-15 * scale)
+            | (g == 0)
+            | (np.abs(hi[idx] - lo[idx]) <= 1e-15 * scale)
         )
         t[idx] = tn
         active[idx[done]] = False
     q = curve.point(t)
     return t, _f_values(q, b, n, 0.0)
+
+
+_Best = tuple[FloatArray, IntArray, FloatArray]  # value, element, parameter per sample
+
+
+def _pick(vals: FloatArray, params: FloatArray, ids: IntArray) -> _Best:
+    """Per-row minimum of an ``(m, E)`` block: value, element id and parameter."""
+    if vals.shape[1] == 0:
+        m = vals.shape[0]
+        return np.full(m, np.inf), np.full(m, -1, dtype=np.int64), np.zeros(m)
+    j = np.argmin(vals, axis=1)
+    r = np.arange(len(j))
+    return vals[r, j], ids[j], params[r, j]
+
+
+def _endpoints_f(
+    o: FloatArray, pts_lo: FloatArray, pts_hi: FloatArray, b: FloatArray, n: FloatArray, tiny: float
+) -> tuple[FloatArray, FloatArray]:
+    f_lo = _f_values(pts_lo[None, :, :], b[:, None, :], n[:, None, :], tiny)
+    f_hi = _f_values(pts_hi[None, :, :], b[:, None, :], n[:, None, :], tiny)
+    return f_lo, f_hi
+
+
+def _lines_block(
+    C: Candidates, b: FloatArray, n: FloatArray, own: IntArray, tiny: float, pen: float
+) -> _Best:
+    """Closed form: the disk tangent at ``b`` growing until it touches each line segment."""
+    o, d, nu = C.line_o[None], C.line_d[None], C.line_nu[None]
+    rel = b[:, None, :] - o
+    h = np.einsum("mek,mek->me", rel, np.broadcast_to(nu, rel.shape))
+    nn = n @ C.line_nu.T
+    sig = np.sign(h)
+    den = 1.0 - sig * nn
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rho = np.where((den > 1e-14) & (sig * h > 0), sig * h / den, np.inf)
+    c = b[:, None, :] + np.where(np.isfinite(rho), rho, 0.0)[..., None] * n[:, None, :]
+    tf = np.einsum("mek,mek->me", c - o, np.broadcast_to(d, c.shape))
+    inside = np.isfinite(rho) & (tf >= C.line_lo) & (tf <= C.line_hi)
+    p_lo = C.line_o + C.line_lo[:, None] * C.line_d
+    p_hi = C.line_o + C.line_hi[:, None] * C.line_d
+    f_lo, f_hi = _endpoints_f(o, p_lo, p_hi, b, n, tiny)
+    end_val = np.minimum(f_lo, f_hi) * (1 + 1e-12) + pen
+    end_par = np.where(f_lo <= f_hi, C.line_lo, C.line_hi)
+    val = np.where(inside, rho, end_val)
+    par = np.where(inside, tf, end_par)
+    val = np.where(own[:, None] == C.lines[None, :], np.inf, val)
+    return _pick(val, par, C.lines)
+
+
+def _circles_block(
+    C: Candidates, b: FloatArray, n: FloatArray, own: IntArray, tiny: float, pen: float
+) -> _Best:
+    """Closed form: the disk tangent at ``b`` touching each circular arc."""
+    w = b[:, None, :] - C.circ_c[None]
+    ww = np.einsum("mek,mek->me", w, w)
+    wn = np.einsum("mek,mk->me", w, n)
+    r = C.circ_r[None, :]
+    inner = ww < r * r
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rho = np.where(inner, (r * r - ww) / (2 * (wn + r)), (ww - r * r) / (2 * (r - wn)))
+    on = np.abs(np.sqrt(ww) - r) <= 1e-12 * r  # b on the same circle (another arc of it)
+    rho = np.where(on, np.where(wn < 0, r, np.inf), rho)
+    rho = np.where(np.isfinite(rho) & (rho > 0), rho, np.inf)
+    c = b[:, None, :] + np.where(np.isfinite(rho), rho, 0.0)[..., None] * n[:, None, :]
+    v = c - C.circ_c[None]
+    alpha = np.arctan2(np.einsum("mek,ek->me", v, C.circ_y), np.einsum("mek,ek->me", v, C.circ_x))
+    a = C.circ_lo + np.mod(alpha - C.circ_lo, 2 * np.pi)
+    inside = np.isfinite(rho) & (a <= C.circ_hi)
+    ang_lo, ang_hi = C.circ_lo[:, None], C.circ_hi[:, None]
+    p_lo = C.circ_c + C.circ_r[:, None] * (np.cos(ang_lo) * C.circ_x + np.sin(ang_lo) * C.circ_y)
+    p_hi = C.circ_c + C.circ_r[:, None] * (np.cos(ang_hi) * C.circ_x + np.sin(ang_hi) * C.circ_y)
+    f_lo, f_hi = _endpoints_f(C.circ_c, p_lo, p_hi, b, n, tiny)
+    end_val = np.minimum(f_lo, f_hi) * (1 + 1e-12) + pen
+    end_par = np.where(f_lo <= f_hi, C.circ_lo, C.circ_hi)
+    val = np.where(inside, rho, end_val)
+    par = np.where(inside, a, end_par)
+    val = np.where(own[:, None] == C.circles[None, :], np.inf, val)
+    return _pick(val, par, C.circles)
+
+
+def _vertices_block(C: Candidates, b: FloatArray, n: FloatArray, tiny: float) -> _Best:
+    f = _f_values(C.vert_p[None, :, :], b[:, None, :], n[:, None, :], tiny)
+    return _pick(f, np.zeros_like(f), C.vertices)
+
+
+def _general_block(
+    boundary: Boundary,
+    C: Candidates,
+    b: FloatArray,
+    n: FloatArray,
+    own: IntArray,
+    own_param: FloatArray,
+    self_bound: FloatArray,
+    tiny: float,
+    pen: float,
+) -> _Best:
+    """Free-form curves: dense candidates, then safeguarded Newton per candidate element."""
+    m = len(b)
+    if len(C.general) == 0:
+        return np.full(m, np.inf), np.full(m, -1, dtype=np.int64), np.zeros(m)
+    f = _f_values(C.points[None, :, :], b[:, None, :], n[:, None, :], tiny)
+    fe = np.minimum.reduceat(f, C.starts, axis=1)
+    rmin = np.minimum(fe.min(axis=1), self_bound)
+    keep = (fe <= rmin[:, None] * 1.25 + 1e-9 * boundary.diag) & np.isfinite(fe)
+    best = np.full(m, np.inf)
+    best_e = np.full(m, -1, dtype=np.int64)
+    best_p = np.zeros(m)
+    for g in np.nonzero(keep.any(axis=0))[0]:
+        rr = np.nonzero(keep[:, g])[0]
+        ei = int(C.general[g])
+        e = boundary.elements[ei]
+        assert e.piece is not None
+        first, last = int(C.starts[g]), int(C.stops[g]) - 1
+        cj = first + np.argmin(f[rr, first : last + 1], axis=1)
+        lo = C.param[np.maximum(cj - 1, first)]
+        hi = C.param[np.minimum(cj + 1, last)]
+        t0 = C.param[cj]
+        lo2, hi2 = np.minimum(lo, hi), np.maximum(lo, hi)
+        is_own = own[rr] == ei
+        if np.any(is_own):
+            # never let the solve fall onto the trivial root q = b on the own curve
+            tb = own_param[rr]
+            inside = is_own & (lo2 < tb) & (tb < hi2)
+            lo2 = np.where(inside & (t0 > tb), tb + 0.5 * (t0 - tb), lo2)
+            hi2 = np.where(inside & (t0 < tb), tb + 0.5 * (t0 - tb), hi2)
+        t, fv = _refine_on_edge(e, b[rr], n[rr], t0, lo2, hi2)
+        if np.linalg.norm(C.points[first] - C.points[last]) <= tiny:
+            # a closed edge: a minimum at its seam may lie on the other side of it
+            at_seam = np.nonzero((cj == first) | (cj == last))[0]
+            if len(at_seam):
+                other = np.where(cj[at_seam] == first, last, first)
+                olo = C.param[np.where(other == first, first, last - 1)]
+                ohi = C.param[np.where(other == first, first + 1, last)]
+                t_b, f_b = _refine_on_edge(
+                    e,
+                    b[rr[at_seam]],
+                    n[rr[at_seam]],
+                    C.param[other],
+                    np.minimum(olo, ohi),
+                    np.maximum(olo, ohi),
+                )
+                better = f_b < fv[at_seam]
+                t[at_seam[better]] = t_b[better]
+                fv[at_seam[better]] = f_b[better]
+        f0 = f[rr, cj]
+        worse = ~(fv <= f0)
+        t = np.where(worse, t0, t)
+        fv = np.where(worse, f0, fv)
+        span = abs(e.piece.t1 - e.piece.t0)
+        at_end = (np.abs(t - e.piece.t0) < 1e-12 * span) | (np.abs(t - e.piece.t1) < 1e-12 * span)
+        fv = np.where(at_end, fv * (1 + 1e-12) + pen, fv)
+        if np.any(is_own):
+            fv = np.where(is_own & (np.abs(t - own_param[rr]) < 1e-9 * span), np.inf, fv)
+        better = fv < best[rr]
+        best[rr[better]] = fv[better]
+        best_e[rr[better]] = ei
+        best_p[rr[better]] = t[better]
+    return best, best_e, best_p
 
 
 def evaluate(
@@ -176,113 +405,43 @@ def evaluate(
     s = np.asarray(s, dtype=float)
     m = len(s)
     elements = boundary.elements
-    elem = np.empty(m, dtype=np.int64)
+    key = cands.loop_offset[loop] + s
+    elem = np.clip(np.searchsorted(cands.elem_key, key, side="right") - 1, 0, len(elements) - 1)
     param = np.empty(m)
     foot = np.empty((m, 2))
     normal = np.empty((m, 2))
     curv = np.empty(m)
-    for e in elements:
-        sel = np.nonzero((loop == e.loop) & (s >= e.s0) & (s <= e.s0 + e.length))[0]
-        if len(sel) == 0:
-            continue
-        elem[sel] = e.index
+    for ei in np.unique(elem):
+        sel = np.nonzero(elem == ei)[0]
+        e = elements[ei]
         param[sel] = boundary.param_of(e, s[sel])
         foot[sel], normal[sel], curv[sel] = boundary.frame_at(e, param[sel])
 
     tiny = 1e-12 * boundary.diag
-    best = np.full(m, np.inf)
-    best_elem = np.full(m, -1, dtype=np.int64)
-    best_param = np.zeros(m)
+    pen = 1e-14 * boundary.diag  # a minimum at a segment's end loses ties
     # the osculating disk bounds rho* (limit of f on the own curve)
     with np.errstate(divide="ignore"):
         self_bound = np.where(curv > 0, 1.0 / np.where(curv > 0, curv, 1.0), np.inf)
-
-    n_cand = len(cands.points)
-    chunk = max(1, _CHUNK_CELLS // max(n_cand, 1))
-    pair_rows: list[IntArray] = []
-    pair_elems: list[IntArray] = []
-    pair_cidx: list[IntArray] = []
+    best = np.full(m, np.inf)
+    best_elem = np.full(m, -1, dtype=np.int64)
+    best_param = np.zeros(m)
+    width = len(cands.lines) + len(cands.circles) + len(cands.vertices) + len(cands.points)
+    chunk = max(1, _CHUNK_CELLS // max(width, 1))
     for c0 in range(0, m, chunk):
-        rows = np.arange(c0, min(m, c0 + chunk))
-        f = _f_values(cands.points[None, :, :], foot[rows, None, :], normal[rows, None, :], tiny)
-        fe = np.minimum.reduceat(f, cands.starts, axis=1)
-        rmin = np.minimum(fe.min(axis=1), self_bound[rows])
-        keep = fe <= rmin[:, None] * 1.25 + 1e-9 * boundary.diag
-        r_i, e_i = np.nonzero(keep & np.isfinite(fe))
-        for ei in np.unique(e_i):
-            sel = e_i == ei
-            rr = r_i[sel]
-            sub = f[rr, cands.starts[ei] : cands.stops[ei]]
-            pair_rows.append(rr + c0)
-            pair_elems.append(np.full(len(rr), ei))
-            pair_cidx.append(cands.starts[ei] + np.argmin(sub, axis=1))
-    rows_all = np.concatenate(pair_rows) if pair_rows else np.zeros(0, dtype=np.int64)
-    elems_all = np.concatenate(pair_elems) if pair_elems else np.zeros(0, dtype=np.int64)
-    cidx_all = np.concatenate(pair_cidx) if pair_cidx else np.zeros(0, dtype=np.int64)
-
-    val = np.full(len(rows_all), np.inf)
-    par = np.zeros(len(rows_all))
-    for ei in np.unique(elems_all):
-        sel = np.nonzero(elems_all == ei)[0]
-        e = elements[ei]
-        rr, cj = rows_all[sel], cidx_all[sel]
-        if e.piece is None:
-            val[sel] = _f_values(cands.points[cj], foot[rr], normal[rr], tiny)
-            par[sel] = e.theta0
-            continue
-        first, last = cands.starts[ei], cands.stops[ei] - 1
-        lo = cands.param[np.maximum(cj - 1, first)]
-        hi = cands.param[np.minimum(cj + 1, last)]
-        t0 = cands.param[cj]
-        own = elem[rr] == ei
-        lo2, hi2 = np.minimum(lo, hi), np.maximum(lo, hi)
-        if np.any(own):
-            # never let the solve fall onto the trivial root q = b on the own curve
-            tb = param[rr]
-            inside = own & (lo2 < tb) & (tb < hi2)
-            lo2 = np.where(inside & (t0 > tb), tb + 0.5 * (t0 - tb), lo2)
-            hi2 = np.where(inside & (t0 < tb), tb + 0.5 * (t0 - tb), hi2)
-        t, fv = _refine_on_edge(e, foot[rr], normal[rr], t0, lo2, hi2)
-        if np.linalg.norm(cands.points[first] - cands.points[last]) <= tiny:
-            # a closed edge: a minimum at its seam may lie on the other side of it
-            at_seam = np.nonzero((cj == first) | (cj == last))[0]
-            if len(at_seam):
-                other = np.where(cj[at_seam] == first, last, first)
-                olo = cands.param[np.where(other == first, first, last - 1)]
-                ohi = cands.param[np.where(other == first, first + 1, last)]
-                t_b, f_b = _refine_on_edge(
-                    e,
-                    foot[rr[at_seam]],
-                    normal[rr[at_seam]],
-                    cands.param[other],
-                    np.minimum(olo, ohi),
-                    np.maximum(olo, ohi),
-                )
-                better = f_b < fv[at_seam]
-                t[at_seam[better]] = t_b[better]
-                fv[at_seam[better]] = f_b[better]
-        f0 = _f_values(cands.points[cj], foot[rr], normal[rr], tiny)
-        worse = ~(fv <= f0)
-        t = np.where(worse, t0, t)
-        fv = np.where(worse, f0, fv)
-        # a minimum at the end of an edge is a vertex: let interior solutions win ties
-        pe = e.piece
-        at_end = (np.abs(t - pe.t0) < 1e-12 * abs(pe.t1 - pe.t0)) | (
-            np.abs(t - pe.t1) < 1e-12 * abs(pe.t1 - pe.t0)
-        )
-        fv = np.where(at_end, fv * (1 + 1e-12) + 1e-14 * boundary.diag, fv)
-        if np.any(own):
-            near = own & (np.abs(t - param[rr]) < 1e-9 * abs(pe.t1 - pe.t0))
-            fv = np.where(near, np.inf, fv)
-        val[sel], par[sel] = fv, t
-
-    order = np.lexsort((val, rows_all))
-    first_of_row = np.ones(len(order), dtype=bool)
-    first_of_row[1:] = rows_all[order][1:] != rows_all[order][:-1]
-    win = order[first_of_row]
-    best[rows_all[win]] = val[win]
-    best_elem[rows_all[win]] = elems_all[win]
-    best_param[rows_all[win]] = par[win]
+        sl = slice(c0, min(m, c0 + chunk))
+        b, n, own = foot[sl], normal[sl], elem[sl]
+        blocks = [
+            _lines_block(cands, b, n, own, tiny, pen),
+            _circles_block(cands, b, n, own, tiny, pen),
+            _vertices_block(cands, b, n, tiny),
+            _general_block(boundary, cands, b, n, own, param[sl], self_bound[sl], tiny, pen),
+        ]
+        vals = np.stack([blk[0] for blk in blocks])
+        j = np.argmin(vals, axis=0)
+        r = np.arange(vals.shape[1])
+        best[sl] = vals[j, r]
+        best_elem[sl] = np.stack([blk[1] for blk in blocks])[j, r]
+        best_param[sl] = np.stack([blk[2] for blk in blocks])[j, r]
 
     is_self = ~(best < self_bound - self_tol)
     radius = np.where(is_self, self_bound, best)

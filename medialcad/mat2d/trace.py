@@ -104,6 +104,7 @@ class _Tracer:
     def __init__(self, boundary: Boundary, settings: TraceSettings) -> None:
         self.b = boundary
         self.cfg = settings
+        self.fit_ok: set[tuple[int, float, float, int]] = set()
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
         self.convex = [
@@ -123,16 +124,16 @@ class _Tracer:
         return p[0], n[0], float(k[0]), e.index, float(t[0])
 
     # -- events --------------------------------------------------------------------
-    def _corner_between(self, loop: int, s0: float, s1: float) -> int:
-        """Index of a convex corner strictly inside the step ``s0 -> s1`` (cyclic), or -1."""
+    def _crosses_corner(self, loop: int, s0: FloatArray, ds: FloatArray) -> NDArray[np.bool_]:
+        """Whether a convex corner lies strictly inside each step ``[s0, s0 + ds]``."""
+        cs = np.sort([sv for lp, sv, _ in self.convex if lp == loop])
+        if len(cs) == 0:
+            return np.zeros(len(s0), dtype=bool)
         length = self.L[loop]
-        for i, (lp, sv, _) in enumerate(self.convex):
-            if lp != loop:
-                continue
-            a = (sv - s0) % length
-            if 0 < a < (s1 - s0) % length or ((s1 - s0) % length == 0 and a > 0):
-                return i
-        return -1
+        ext = np.concatenate([cs - length, cs, cs + length])
+        lo = np.searchsorted(ext, s0, side="right")
+        hi = np.searchsorted(ext, s0 + ds, side="left")
+        return np.asarray(hi > lo)
 
     def _sp_node(self, loop: int, s0: float, s1: float) -> tuple[FloatArray, float, FloatArray, int, float]:
         """The centre of curvature at the curvature maximum in ``[s0, s1]`` (golden section)."""
@@ -208,7 +209,6 @@ class _Tracer:
             if lpc == lp:
                 events.append(_Event(lp, sv, sv, NodeKind.CONVEX_VERTEX, pt, 0.0, [(-1, 0.0, pt)]))
         # runs of self samples: one curvature-centre event each
-        k = 0
         n = len(idx)
         start_run = [
             j for j in range(n) if self_[idx[j]] and not self_[idx[(j - 1) % n]]
@@ -224,35 +224,30 @@ class _Tracer:
                 lo_s, hi_s = 0.0, length
             c, r, p, ei, t = self._sp_node(lp, lo_s, hi_s)
             events.append(_Event(lp, lo_s, hi_s, NodeKind.CURVATURE_CENTRE, c, r, [(ei, t, p)]))
-        for j in range(n if n > 1 else 0):
+        if n < 2:
+            return
+        crosses = self._crosses_corner(lp, s0, ds)
+        cand = ~self_[idx] & ~self_[nxt] & ~crosses
+        jump = cand & (gap > cfg.jump_slope * ds + cfg.tol)
+        split = jump & (ds > cfg.eps_s)
+        new_loop += [lp] * int(split.sum())
+        new_s += list(s0[split] + 0.5 * ds[split])
+        for j in np.nonzero(jump & ~split)[0]:
             i0, i1 = idx[j], nxt[j]
-            if self_[i0] or self_[i1]:
-                continue
-            if self._corner_between(lp, s0[j], s1[j]) >= 0:
-                continue
-            slope_gap = gap[j] > cfg.jump_slope * ds[j] + cfg.tol
-            if slope_gap:
-                if ds[j] > cfg.eps_s:
-                    new_loop.append(lp)
-                    new_s.append(s0[j] + 0.5 * ds[j])
-                    continue
-                c = 0.5 * (S.centre[i0] + S.centre[i1])
-                r = 0.5 * (S.radius[i0] + S.radius[i1])
-                feet = [
-                    (int(S.element[i0]), float(S.param[i0]), S.foot[i0]),
-                    (int(S.partner_element[i0]), float(S.partner_param[i0]), S.partner_point[i0]),
-                    (int(S.partner_element[i1]), float(S.partner_param[i1]), S.partner_point[i1]),
-                ]
-                events.append(
-                    _Event(lp, s0[j], s0[j] + ds[j], NodeKind.BRANCH_POINT, c, r, feet)
-                )
-                continue
-            if d0[j] > 0 and d1[j] < 0 and d0[j] - d1[j] <= 3 * ds[j] + cfg.tol:
-                c, r, p, ei, t = self._sp_node(lp, s0[j], s0[j] + ds[j])
-                events.append(
-                    _Event(lp, s0[j], s0[j] + ds[j], NodeKind.CURVATURE_CENTRE, c, r, [(ei, t, p)])
-                )
-        del k
+            c = 0.5 * (S.centre[i0] + S.centre[i1])
+            r = 0.5 * (S.radius[i0] + S.radius[i1])
+            feet = [
+                (int(S.element[i0]), float(S.param[i0]), S.foot[i0]),
+                (int(S.partner_element[i0]), float(S.partner_param[i0]), S.partner_point[i0]),
+                (int(S.partner_element[i1]), float(S.partner_param[i1]), S.partner_point[i1]),
+            ]
+            events.append(_Event(lp, s0[j], s0[j] + ds[j], NodeKind.BRANCH_POINT, c, r, feet))
+        sp = cand & ~jump & (d0 > 0) & (d1 < 0) & (d0 - d1 <= 3 * ds + cfg.tol)
+        for j in np.nonzero(sp)[0]:
+            c, r, p, ei, t = self._sp_node(lp, s0[j], s0[j] + ds[j])
+            events.append(
+                _Event(lp, s0[j], s0[j] + ds[j], NodeKind.CURVATURE_CENTRE, c, r, [(ei, t, p)])
+            )
 
 
 def _merge_nodes(events: list[_Event], radius: float) -> int:
@@ -391,34 +386,41 @@ def _missing_fit(tr: _Tracer, S: MapSamples, iv: _Interval, tol: float) -> list[
     """Loop coordinates of exact midpoints that the fitted spline misses by > tol/2."""
     if len(iv.samples) == 0:
         return []
+    key = (
+        iv.loop,
+        iv.start.s_hi if iv.start is not None else -1.0,
+        iv.end.s_lo if iv.end is not None else -1.0,
+        len(iv.samples),
+    )
+    if key in tr.fit_ok:
+        return []
     pts, rad = _branch_arrays(S, iv)
     spline = fit_spline(np.column_stack([pts, rad]))
     u = _knots_of(pts)
-    s = S.s[iv.samples]
     length = tr.L[iv.loop]
-    s_ext = list(s)
-    offs = 1 if iv.start is not None else 0
-    mids: list[float] = []
-    mid_u: list[tuple[float, float]] = []
-    for j in range(len(s_ext) - 1):
-        a, b = s_ext[j], s_ext[j + 1]
-        d = (b - a) % length
-        if d <= tr.cfg.eps_s * 4:
-            continue
-        mids.append(a + 0.5 * d)
-        mid_u.append((u[offs + j], u[offs + j + 1]))
-    if not mids:
+    s = S.s[iv.samples]
+    if iv.start is None:
+        s_ext = np.concatenate([s, [s[0] + length]])
+    else:
+        assert iv.end is not None
+        s_ext = np.concatenate([[iv.start.s_hi], s, [iv.end.s_lo]])
+    d = np.diff(s_ext) % length
+    ok = d > 4 * tr.cfg.eps_s
+    if not np.any(ok):
+        tr.fit_ok.add(key)
         return []
-    M = tr.eval(np.full(len(mids), iv.loop), np.array(mids))
-    bad: list[float] = []
-    for k, (ua, ub) in enumerate(mid_u):
-        uu = np.linspace(ua, ub, 17)
-        cur = spline(uu)
-        d = np.linalg.norm(cur[:, :2] - M.centre[k], axis=1)
-        j = int(np.argmin(d))
-        if d[j] > 0.5 * tol or abs(cur[j, 2] - M.radius[k]) > 0.5 * tol:
-            bad.append(mids[k])
-    return bad
+    mids = s_ext[:-1][ok] + 0.5 * d[ok]
+    ua, ub = u[:-1][ok], u[1:][ok]
+    M = tr.eval(np.full(len(mids), iv.loop), mids)
+    uu = ua[:, None] + (ub - ua)[:, None] * np.linspace(0.0, 1.0, 17)[None, :]
+    cur = spline(uu.ravel()).reshape(len(mids), 17, -1)
+    dist = np.linalg.norm(cur[..., :2] - M.centre[:, None, :], axis=2)
+    j = np.argmin(dist, axis=1)
+    r = np.arange(len(mids))
+    bad = (dist[r, j] > 0.5 * tol) | (np.abs(cur[r, j, 2] - M.radius) > 0.5 * tol)
+    if not np.any(bad):
+        tr.fit_ok.add(key)
+    return [float(x) for x in mids[bad]]
 
 
 def _knots_of(pts: FloatArray) -> FloatArray:
