@@ -138,9 +138,7 @@ def _piece_length(p: EdgePiece) -> float:
     return float(np.sum(np.linalg.norm(np.diff(pts, axis=0), axis=1)))
 
 
-def build_boundary(
-    loops: list[list[EdgePiece]], gap_tol: float, angle_tol: float
-) -> Boundary:
+def build_boundary(loops: list[list[EdgePiece]], gap_tol: float, angle_tol: float) -> Boundary:
     """Orient the loops, classify the corners and lay out the elements.
 
     Args:

@@ -61,6 +61,7 @@ class Candidates:
     vert_p: FloatArray
     elem_key: FloatArray  # sorted start keys of all elements (loop offset + s0)
     loop_offset: FloatArray
+    spacing: float  # candidate spacing of general curves
 
 
 @dataclass(frozen=True)
@@ -176,6 +177,7 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
         vert_p=col(verts, 1, 2),
         elem_key=keys,
         loop_offset=offset,
+        spacing=spacing,
     )
 
 
@@ -394,12 +396,16 @@ def _general_block(
 
 
 def evaluate(
-    boundary: Boundary, cands: Candidates, loop: IntArray, s: FloatArray, self_tol: float
+    boundary: Boundary, cands: Candidates, loop: IntArray, s: FloatArray, tol: float
 ) -> MapSamples:
     """The medial map at boundary points given by ``(loop, s)``.
 
-    A disk whose radius is within ``self_tol`` of the osculating radius ``1/k(b)`` is
-    taken to be the osculating disk (its centre is the centre of curvature).
+    A disk whose radius is within ``tol / 1000`` of the osculating radius ``1/k(b)`` is
+    taken to be the osculating disk (its centre is the centre of curvature). So is a disk
+    whose partner is on the own curve closer than ``sqrt(tol / k) / 2`` (or a tenth of the
+    candidate spacing): there the medial point is within ``tol`` of the centre of
+    curvature of the nearby curvature maximum, and its equations are ill-conditioned.
+    Such samples are flagged ``is_self`` and only locate that end point.
     """
     loop = np.asarray(loop, dtype=np.int64)
     s = np.asarray(s, dtype=float)
@@ -443,7 +449,7 @@ def evaluate(
         best_elem[sl] = np.stack([blk[1] for blk in blocks])[j, r]
         best_param[sl] = np.stack([blk[2] for blk in blocks])[j, r]
 
-    is_self = ~(best < self_bound - self_tol)
+    is_self = ~(best < self_bound - 1e-3 * tol)
     radius = np.where(is_self, self_bound, best)
     centre = foot + radius[:, None] * normal
     p_elem = np.where(is_self, elem, best_elem)
@@ -466,6 +472,11 @@ def evaluate(
         else:
             p_point[sel] = e.piece.curve.point(p_param[sel])
         p_s[sel] = boundary.s_of(e, p_param[sel])
+    near = np.maximum(
+        0.5 * np.sqrt(tol * np.where(np.isfinite(self_bound), self_bound, 0.0)), 0.1 * cands.spacing
+    )
+    own_close = (p_elem == elem) & ~is_self & (np.abs(p_s - s) < near) & np.isfinite(self_bound)
+    is_self = is_self | own_close
     return MapSamples(
         loop=loop,
         s=s,

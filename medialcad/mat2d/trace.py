@@ -55,6 +55,7 @@ class TraceSettings:
     jump_slope: float = 8.0  # partner gap / step above which a step is refined
     max_fit_rounds: int = 10
     max_bisection_rounds: int = 64
+    max_samples: int = 400_000
 
     @property
     def eps_s(self) -> float:
@@ -114,7 +115,7 @@ class _Tracer:
     # -- sampling ------------------------------------------------------------------
     def eval(self, loop: IntArray, s: FloatArray) -> MapSamples:
         s = np.mod(s, self.L[loop])
-        return evaluate(self.b, self.cands, loop, s, 1e-3 * self.cfg.tol)
+        return evaluate(self.b, self.cands, loop, s, self.cfg.tol)
 
     def frame_s(self, loop: int, s: float) -> tuple[FloatArray, FloatArray, float, int, float]:
         s = float(s % self.L[loop])
@@ -135,7 +136,9 @@ class _Tracer:
         hi = np.searchsorted(ext, s0 + ds, side="left")
         return np.asarray(hi > lo)
 
-    def _sp_node(self, loop: int, s0: float, s1: float) -> tuple[FloatArray, float, FloatArray, int, float]:
+    def _sp_node(
+        self, loop: int, s0: float, s1: float
+    ) -> tuple[FloatArray, float, FloatArray, int, float]:
         """The centre of curvature at the curvature maximum in ``[s0, s1]`` (golden section)."""
         length = self.L[loop]
         a, b = s0, s0 + (s1 - s0) % length
@@ -177,6 +180,10 @@ class _Tracer:
                 self._loop_events(S, idx, lp, events, new_loop, new_s)
             if not new_s:
                 return S, events, True
+            if len(S) + len(new_s) > cfg.max_samples:
+                raise ComputationError(
+                    f"the medial axis needs more than {cfg.max_samples} boundary samples"
+                )
             S = MapSamples.concat([S, self.eval(np.array(new_loop), np.array(new_s))])
         return S, events, False
 
@@ -198,9 +205,7 @@ class _Tracer:
             ds = np.array([length])
         same_loop = S.partner_loop[idx] == S.partner_loop[nxt]
         plen = self.L[S.partner_loop[idx]]
-        gap = np.where(
-            same_loop, np.abs(_cyc(S.partner_s[nxt] - S.partner_s[idx], plen)), np.inf
-        )
+        gap = np.where(same_loop, np.abs(_cyc(S.partner_s[nxt] - S.partner_s[idx], plen)), np.inf)
         d0 = np.where(S.partner_loop[idx] == lp, _cyc(S.partner_s[idx] - s0, length), np.inf)
         d1 = np.where(S.partner_loop[nxt] == lp, _cyc(S.partner_s[nxt] - s1, length), -np.inf)
         self_ = S.is_self
@@ -210,9 +215,7 @@ class _Tracer:
                 events.append(_Event(lp, sv, sv, NodeKind.CONVEX_VERTEX, pt, 0.0, [(-1, 0.0, pt)]))
         # runs of self samples: one curvature-centre event each
         n = len(idx)
-        start_run = [
-            j for j in range(n) if self_[idx[j]] and not self_[idx[(j - 1) % n]]
-        ]
+        start_run = [j for j in range(n) if self_[idx[j]] and not self_[idx[(j - 1) % n]]]
         if n and all(self_[idx]):
             start_run = [0]
         for j0 in start_run:
@@ -228,7 +231,13 @@ class _Tracer:
             return
         crosses = self._crosses_corner(lp, s0, ds)
         cand = ~self_[idx] & ~self_[nxt] & ~crosses
-        jump = cand & (gap > cfg.jump_slope * ds + cfg.tol)
+        # a jump: the partner moves much faster over this step than over the steps
+        # beside it, and keeps doing so as the step is halved
+        ratio = gap / np.maximum(ds, 1e-300)
+        cont = np.where(cand & np.isfinite(ratio), ratio, np.inf)
+        beside = np.minimum(np.roll(cont, 1), np.roll(cont, -1))
+        beside = np.where(np.isfinite(beside), beside, 0.0)
+        jump = cand & (gap > cfg.tol) & (ratio > 4.0 * beside + cfg.jump_slope)
         split = jump & (ds > cfg.eps_s)
         new_loop += [lp] * int(split.sum())
         new_s += list(s0[split] + 0.5 * ds[split])
@@ -418,6 +427,7 @@ def _missing_fit(tr: _Tracer, S: MapSamples, iv: _Interval, tol: float) -> list[
     j = np.argmin(dist, axis=1)
     r = np.arange(len(mids))
     bad = (dist[r, j] > 0.5 * tol) | (np.abs(cur[r, j, 2] - M.radius) > 0.5 * tol)
+    bad &= ~M.is_self  # next to a curvature-centre end point: the end point rules there
     if not np.any(bad):
         tr.fit_ok.add(key)
     return [float(x) for x in mids[bad]]
