@@ -186,7 +186,9 @@ def _f_values(q: FloatArray, b: FloatArray, n: FloatArray, tiny: float) -> Float
     d = q - b
     a = np.einsum("...i,...i->...", d, d)
     bb = np.einsum("...i,...i->...", d, n)
-    ok = (bb > 1e-12 * np.sqrt(a)) & (a > tiny * tiny)
+    # q must be ahead of b by more than the coordinates' noise, or a vertex shared with
+    # the neighbouring edge would pass for a partner when b is next to it
+    ok = (bb > 1e-12 * np.sqrt(a)) & (bb > 10.0 * tiny) & (a > tiny * tiny)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(ok, a / (2.0 * np.where(ok, bb, 1.0)), np.inf)
 
@@ -269,7 +271,8 @@ def _lines_block(
     sig = np.sign(h)
     den = 1.0 - sig * nn
     with np.errstate(divide="ignore", invalid="ignore"):
-        rho = np.where((den > 1e-14) & (sig * h > 0), sig * h / den, np.inf)
+        # b on the line itself (a neighbouring edge's vertex) is no tangency
+        rho = np.where((den > 1e-14) & (sig * h > 10.0 * tiny), sig * h / den, np.inf)
     c = b[:, None, :] + np.where(np.isfinite(rho), rho, 0.0)[..., None] * n[:, None, :]
     tf = np.einsum("mek,mek->me", c - o, np.broadcast_to(d, c.shape))
     inside = np.isfinite(rho) & (tf >= C.line_lo) & (tf <= C.line_hi)
@@ -295,7 +298,7 @@ def _circles_block(
     inner = ww < r * r
     with np.errstate(divide="ignore", invalid="ignore"):
         rho = np.where(inner, (r * r - ww) / (2 * (wn + r)), (ww - r * r) / (2 * (r - wn)))
-    on = np.abs(np.sqrt(ww) - r) <= 1e-12 * r  # b on the same circle (another arc of it)
+    on = np.abs(np.sqrt(ww) - r) <= 10.0 * tiny  # b on the same circle (another arc of it)
     rho = np.where(on, np.where(wn < 0, r, np.inf), rho)
     rho = np.where(np.isfinite(rho) & (rho > 0), rho, np.inf)
     c = b[:, None, :] + np.where(np.isfinite(rho), rho, 0.0)[..., None] * n[:, None, :]

@@ -275,6 +275,15 @@ def _merge_nodes(events: list[_Event], radius: float) -> int:
     roots: dict[int, int] = {}
     for i, e in enumerate(events):
         e.node = roots.setdefault(find(i), len(roots))
+    # every event of a node carries the node's point and radius (branches end exactly there)
+    for k in range(len(roots)):
+        group = [e for e in events if e.node == k]
+        if len(group) > 1:
+            corner = [e for e in group if e.kind is NodeKind.CONVEX_VERTEX]
+            pt = corner[0].point if corner else np.mean([e.point for e in group], axis=0)
+            r = 0.0 if corner else float(np.mean([e.radius for e in group]))
+            for e in group:
+                e.point, e.radius = pt, r
     return len(roots)
 
 
@@ -338,7 +347,7 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
             raise ComputationError("medial axis events did not converge")
         n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
         intervals = _intervals(S, events, tr.L)
-        kept = _dedupe(S, intervals, tr.L)
+        kept = [_thin(S, iv, 1e-2 * tol) for iv in _dedupe(S, intervals, tr.L)]
         add_loop: list[int] = []
         add_s: list[float] = []
         for iv in kept:
@@ -374,6 +383,25 @@ def _lower_side(iv: _Interval, intervals: list[_Interval], L: FloatArray) -> boo
         if other.start.node == iv.end.node and other.end.node == iv.start.node:
             return id(iv) < id(other) if len(other.samples) == 0 else False
     return True
+
+
+def _thin(S: MapSamples, iv: _Interval, gap: float) -> _Interval:
+    """Drop samples closer than ``gap`` to the previous point kept (the bisection that
+    isolates an event leaves clusters of them next to its node; interpolating through
+    near-coincident points would make the spline oscillate)."""
+    if len(iv.samples) == 0:
+        return iv
+    c = S.centre[iv.samples]
+    keep = np.zeros(len(c), dtype=bool)
+    last = iv.start.point if iv.start is not None else None
+    for i in range(len(c)):
+        if last is None or np.linalg.norm(c[i] - last) >= gap:
+            keep[i] = True
+            last = c[i]
+    if iv.end is not None:
+        while keep.any() and np.linalg.norm(c[np.nonzero(keep)[0][-1]] - iv.end.point) < gap:
+            keep[np.nonzero(keep)[0][-1]] = False
+    return _Interval(iv.loop, iv.start, iv.end, iv.samples[keep])
 
 
 def _branch_arrays(S: MapSamples, iv: _Interval) -> tuple[FloatArray, FloatArray]:
