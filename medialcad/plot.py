@@ -52,7 +52,9 @@ def plot_medial_axis_2d(
     shown = sorted(mat.nodes, key=lambda n: -n.radius)[:disks]
     for n in shown:
         if n.radius > 0:
-            ax.add_patch(plt.Circle(tuple(n.point_2d), n.radius, fill=False, color="tab:orange", lw=0.6))
+            ax.add_patch(
+                plt.Circle(tuple(n.point_2d), n.radius, fill=False, color="tab:orange", lw=0.6)
+            )
     ax.set_aspect("equal")
     ax.autoscale_view()
     ax.set_title(

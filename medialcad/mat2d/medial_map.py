@@ -62,6 +62,7 @@ class Candidates:
     elem_key: FloatArray  # sorted start keys of all elements (loop offset + s0)
     loop_offset: FloatArray
     spacing: float  # candidate spacing of general curves
+    reflex_end: BoolArray  # (E, 2): the edge's low / high parameter end is a reflex vertex
 
 
 @dataclass(frozen=True)
@@ -178,7 +179,25 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
         elem_key=keys,
         loop_offset=offset,
         spacing=spacing,
+        reflex_end=_reflex_ends(boundary),
     )
+
+
+def _reflex_ends(boundary: Boundary) -> BoolArray:
+    """For each edge, whether its low / high parameter end is a reflex vertex (whose
+    element owns that point: a minimum of ``f`` clamped there is the vertex's)."""
+    els = boundary.elements
+    out = np.zeros((len(els), 2), dtype=bool)
+    for e in els:
+        if e.piece is None:
+            continue
+        same = [x for x in els if x.loop == e.loop]
+        k = same.index(e)
+        before, after = same[k - 1], same[(k + 1) % len(same)]
+        start, end = before.is_vertex and before is not e, after.is_vertex and after is not e
+        forward = e.piece.t1 > e.piece.t0
+        out[e.index] = (start, end) if forward else (end, start)
+    return out
 
 
 def _f_values(q: FloatArray, b: FloatArray, n: FloatArray, tiny: float) -> FloatArray:
@@ -279,6 +298,8 @@ def _lines_block(
     p_lo = C.line_o + C.line_lo[:, None] * C.line_d
     p_hi = C.line_o + C.line_hi[:, None] * C.line_d
     f_lo, f_hi = _endpoints_f(o, p_lo, p_hi, b, n, tiny)
+    f_lo = np.where(C.reflex_end[C.lines, 0], np.inf, f_lo)
+    f_hi = np.where(C.reflex_end[C.lines, 1], np.inf, f_hi)
     end_val = np.minimum(f_lo, f_hi) * (1 + 1e-12) + pen
     end_par = np.where(f_lo <= f_hi, C.line_lo, C.line_hi)
     val = np.where(inside, rho, end_val)
@@ -310,6 +331,8 @@ def _circles_block(
     p_lo = C.circ_c + C.circ_r[:, None] * (np.cos(ang_lo) * C.circ_x + np.sin(ang_lo) * C.circ_y)
     p_hi = C.circ_c + C.circ_r[:, None] * (np.cos(ang_hi) * C.circ_x + np.sin(ang_hi) * C.circ_y)
     f_lo, f_hi = _endpoints_f(C.circ_c, p_lo, p_hi, b, n, tiny)
+    f_lo = np.where(C.reflex_end[C.circles, 0], np.inf, f_lo)
+    f_hi = np.where(C.reflex_end[C.circles, 1], np.inf, f_hi)
     end_val = np.minimum(f_lo, f_hi) * (1 + 1e-12) + pen
     end_par = np.where(f_lo <= f_hi, C.circ_lo, C.circ_hi)
     val = np.where(inside, rho, end_val)
@@ -331,6 +354,7 @@ def _general_block(
     own: IntArray,
     own_param: FloatArray,
     self_bound: FloatArray,
+    near: FloatArray,
     tiny: float,
     pen: float,
 ) -> _Best:
@@ -351,20 +375,36 @@ def _general_block(
         e = boundary.elements[ei]
         assert e.piece is not None
         first, last = int(C.starts[g]), int(C.stops[g]) - 1
-        cj = first + np.argmin(f[rr, first : last + 1], axis=1)
+        # every discrete local minimum near the best: one curve can hold several partners
+        # whose values differ by less than the sampling error (at a branch point)
+        fg = f[rr, first : last + 1]
+        closed = np.linalg.norm(C.points[first] - C.points[last]) <= tiny
+        pad = fg[:, -2:-1] if closed else np.full((len(rr), 1), np.inf)
+        left = np.concatenate([pad, fg[:, :-1]], axis=1)
+        pad = fg[:, 1:2] if closed else np.full((len(rr), 1), np.inf)
+        right = np.concatenate([fg[:, 1:], pad], axis=1)
+        thr = rmin[rr] * 1.25 + 1e-9 * boundary.diag
+        lm = (fg <= left) & (fg <= right) & (fg <= thr[:, None]) & np.isfinite(fg)
+        if closed:
+            lm[:, -1] = False  # the seam point is the first candidate too
+        ri, jj = np.nonzero(lm)
+        rr, cj = rr[ri], first + jj
         lo = C.param[np.maximum(cj - 1, first)]
         hi = C.param[np.minimum(cj + 1, last)]
         t0 = C.param[cj]
         lo2, hi2 = np.minimum(lo, hi), np.maximum(lo, hi)
         is_own = own[rr] == ei
         if np.any(is_own):
-            # never let the solve fall onto the trivial root q = b on the own curve
+            # never let the solve fall onto the trivial root q = b on the own curve: the
+            # partner of a sample that is not near-self lies at least ``near`` away
             tb = own_param[rr]
-            inside = is_own & (lo2 < tb) & (tb < hi2)
-            lo2 = np.where(inside & (t0 > tb), tb + 0.5 * (t0 - tb), lo2)
-            hi2 = np.where(inside & (t0 < tb), tb + 0.5 * (t0 - tb), hi2)
+            speed = np.linalg.norm(e.piece.curve.derivs(tb)[1], axis=1)
+            cut = np.minimum(0.5 * near[rr] / np.maximum(speed, 1e-300), 0.5 * np.abs(t0 - tb))
+            inside = is_own & (lo2 < tb + cut) & (tb - cut < hi2)
+            lo2 = np.where(inside & (t0 > tb), np.maximum(lo2, tb + cut), lo2)
+            hi2 = np.where(inside & (t0 < tb), np.minimum(hi2, tb - cut), hi2)
         t, fv = _refine_on_edge(e, b[rr], n[rr], t0, lo2, hi2)
-        if np.linalg.norm(C.points[first] - C.points[last]) <= tiny:
+        if closed:
             # a closed edge: a minimum at its seam may lie on the other side of it
             at_seam = np.nonzero((cj == first) | (cj == last))[0]
             if len(at_seam):
@@ -389,12 +429,21 @@ def _general_block(
         span = abs(e.piece.t1 - e.piece.t0)
         at_end = (np.abs(t - e.piece.t0) < 1e-12 * span) | (np.abs(t - e.piece.t1) < 1e-12 * span)
         fv = np.where(at_end, fv * (1 + 1e-12) + pen, fv)
+        lo_t, hi_t = min(e.piece.t0, e.piece.t1), max(e.piece.t0, e.piece.t1)
+        at_reflex = (C.reflex_end[ei, 0] & (np.abs(t - lo_t) < 1e-12 * span)) | (
+            C.reflex_end[ei, 1] & (np.abs(t - hi_t) < 1e-12 * span)
+        )
+        fv = np.where(at_reflex, np.inf, fv)
         if np.any(is_own):
             fv = np.where(is_own & (np.abs(t - own_param[rr]) < 1e-9 * span), np.inf, fv)
-        better = fv < best[rr]
-        best[rr[better]] = fv[better]
-        best_e[rr[better]] = ei
-        best_p[rr[better]] = t[better]
+        order = np.lexsort((fv, rr))
+        head = np.ones(len(order), dtype=bool)
+        head[1:] = rr[order][1:] != rr[order][:-1]
+        win = order[head]
+        better = fv[win] < best[rr[win]]
+        best[rr[win][better]] = fv[win][better]
+        best_e[rr[win][better]] = ei
+        best_p[rr[win][better]] = t[win][better]
     return best, best_e, best_p
 
 
@@ -405,8 +454,7 @@ def evaluate(
 
     A disk whose radius is within ``tol / 1000`` of the osculating radius ``1/k(b)`` is
     taken to be the osculating disk (its centre is the centre of curvature). So is a disk
-    whose partner is on the own curve closer than ``sqrt(tol / k) / 2`` (or a tenth of the
-    candidate spacing): there the medial point is within ``tol`` of the centre of
+    whose partner is on the own curve closer than ``sqrt(tol / k) / 2``: there the medial point is within ``tol`` of the centre of
     curvature of the nearby curvature maximum, and its equations are ill-conditioned.
     Such samples are flagged ``is_self`` and only locate that end point.
     """
@@ -431,6 +479,7 @@ def evaluate(
     # the osculating disk bounds rho* (limit of f on the own curve)
     with np.errstate(divide="ignore"):
         self_bound = np.where(curv > 0, 1.0 / np.where(curv > 0, curv, 1.0), np.inf)
+    near = 0.5 * np.sqrt(tol * np.where(np.isfinite(self_bound), self_bound, 0.0))
     best = np.full(m, np.inf)
     best_elem = np.full(m, -1, dtype=np.int64)
     best_param = np.zeros(m)
@@ -443,7 +492,9 @@ def evaluate(
             _lines_block(cands, b, n, own, tiny, pen),
             _circles_block(cands, b, n, own, tiny, pen),
             _vertices_block(cands, b, n, tiny),
-            _general_block(boundary, cands, b, n, own, param[sl], self_bound[sl], tiny, pen),
+            _general_block(
+                boundary, cands, b, n, own, param[sl], self_bound[sl], near[sl], tiny, pen
+            ),
         ]
         vals = np.stack([blk[0] for blk in blocks])
         j = np.argmin(vals, axis=0)
@@ -475,9 +526,6 @@ def evaluate(
         else:
             p_point[sel] = e.piece.curve.point(p_param[sel])
         p_s[sel] = boundary.s_of(e, p_param[sel])
-    near = np.maximum(
-        0.5 * np.sqrt(tol * np.where(np.isfinite(self_bound), self_bound, 0.0)), 0.1 * cands.spacing
-    )
     own_close = (p_elem == elem) & ~is_self & (np.abs(p_s - s) < near) & np.isfinite(self_bound)
     is_self = is_self | own_close
     return MapSamples(

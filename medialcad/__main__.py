@@ -1,0 +1,3 @@
+from medialcad.cli import main
+import sys
+sys.exit(main())
