@@ -1,3 +1,5 @@
-from medialcad.cli import main
 import sys
+
+from medialcad.cli import main
+
 sys.exit(main())

@@ -10,6 +10,7 @@ from numpy.typing import NDArray
 
 from medialcad.errors import InputError, SelfIntersectingBoundaryError
 from medialcad.frame import Frame
+from medialcad.mat2d.boundary import Boundary, build_boundary
 from medialcad.mat2d.graph import Branch, MedialGraph, Node, NodeKind
 
 __all__ = ["ANGLE_TOL", "MedialAxis2D", "medial_axis_2d"]
@@ -111,7 +112,6 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
         DegenerateFaceError: the input cannot be handled.
         ComputationError: an internal failure.
     """
-    from medialcad.mat2d.boundary import build_boundary
     from medialcad.mat2d.trace import TraceSettings, trace_medial_graph
     from medialcad.occ.face2d import planar_face
 
@@ -126,34 +126,37 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
     return MedialAxis2D(graph, pf.face)
 
 
-def _check_simple(boundary: Any) -> None:
-    """Refuse boundaries whose loops cross (OCC's checker misses some of these)."""
-    from medialcad.mat2d.boundary import Boundary
+def _check_simple(boundary: Boundary) -> None:
+    """Refuse boundaries whose edges cross (OCC's checker misses some of these).
 
-    assert isinstance(boundary, Boundary)
-    segs = []
+    Polylines of every edge are tested pairwise where their segments are close enough
+    to meet (a KD-tree on segment midpoints), for proper crossings between different
+    edges.
+    """
+    from scipy.spatial import cKDTree
+
+    a_list, b_list, idx_list = [], [], []
     for e in boundary.elements:
         if e.piece is None:
             continue
-        t = np.linspace(e.piece.t0, e.piece.t1, 33)
-        p = e.piece.curve.point(t)
-        for a, b in zip(p[:-1], p[1:], strict=True):
-            segs.append((a, b, e.index))
-    if len(segs) > 20000:
+        p = e.piece.curve.point(np.linspace(e.piece.t0, e.piece.t1, 33))
+        a_list.append(p[:-1])
+        b_list.append(p[1:])
+        idx_list.append(np.full(len(p) - 1, e.index))
+    a, b, idx = np.vstack(a_list), np.vstack(b_list), np.concatenate(idx_list)
+    mid, d = 0.5 * (a + b), b - a
+    half = 0.5 * float(np.linalg.norm(d, axis=1).max())
+    pairs = cKDTree(mid).query_pairs(2.0 * half + 1e-12, output_type="ndarray")
+    if len(pairs) == 0:
         return
-    a = np.array([s[0] for s in segs])
-    b = np.array([s[1] for s in segs])
-    idx = np.array([s[2] for s in segs])
-    d = b - a
-    n = len(segs)
-    for i in range(n):
-        # proper crossings with segments of other elements that are not neighbours
-        u = a - a[i]
-        den = d[i, 0] * d[:, 1] - d[i, 1] * d[:, 0]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ti = (u[:, 0] * d[:, 1] - u[:, 1] * d[:, 0]) / den
-            tj = (u[:, 0] * d[i, 1] - u[:, 1] * d[i, 0]) / den
-        hit = (np.abs(den) > 1e-14) & (ti > 1e-6) & (ti < 1 - 1e-6) & (tj > 1e-6) & (tj < 1 - 1e-6)
-        hit &= idx != idx[i]
-        if np.any(hit):
-            raise SelfIntersectingBoundaryError("the boundary of the face intersects itself")
+    i, j = pairs[:, 0], pairs[:, 1]
+    keep = idx[i] != idx[j]
+    i, j = i[keep], j[keep]
+    u = a[j] - a[i]
+    den = d[i, 0] * d[j, 1] - d[i, 1] * d[j, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ti = (u[:, 0] * d[j, 1] - u[:, 1] * d[j, 0]) / den
+        tj = (u[:, 0] * d[i, 1] - u[:, 1] * d[i, 0]) / den
+    inner = (ti > 1e-6) & (ti < 1 - 1e-6) & (tj > 1e-6) & (tj < 1 - 1e-6)
+    if np.any((np.abs(den) > 1e-14 * boundary.diag**2) & inner):
+        raise SelfIntersectingBoundaryError("the boundary of the face intersects itself")

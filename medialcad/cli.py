@@ -32,8 +32,15 @@ def _parser() -> argparse.ArgumentParser:
     )
     p.add_argument("input", help="STEP (.step/.stp) or BREP (.brep) file")
     p.add_argument("-o", "--output", required=True, help="medial axis output file")
-    p.add_argument("--tol", type=float, default=None, help="absolute tolerance (default 1e-5 x bbox diagonal)")
-    p.add_argument("--format", choices=("step", "brep"), default=None, help="output format (default: by suffix)")
+    p.add_argument(
+        "--tol", type=float, default=None, help="absolute tolerance (default 1e-5 x bbox diagonal)"
+    )
+    p.add_argument(
+        "--format",
+        choices=("step", "brep"),
+        default=None,
+        help="output format (default: by suffix)",
+    )
     p.add_argument("--report", default=None, help="write a JSON report here")
     p.add_argument("--png", default=None, help="write a picture of the medial axis here")
     p.add_argument("--debug", action="store_true", help="show tracebacks")
@@ -143,7 +150,7 @@ def main(argv: list[str] | None = None) -> int:
             raise
         print(f"medialcad: failed: {err}", file=sys.stderr)
         return 1
-    except Exception as err:  # noqa: BLE001 - one line for the user, not a traceback
+    except Exception as err:
         if args.debug:
             raise
         print(f"medialcad: internal error: {type(err).__name__}: {err}", file=sys.stderr)

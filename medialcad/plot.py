@@ -33,7 +33,8 @@ def plot_medial_axis_2d(
             t = np.linspace(piece.t0, piece.t1, 200)
             xy = piece.curve.point(t)
             ax.plot(xy[:, 0], xy[:, 1], color="black", lw=1.2)
-    segs, vals = [], []
+    segs: list[np.ndarray] = []
+    vals: list[float] = []
     for b in mat.branches:
         lo, hi = b.spline.domain
         v = b.spline(np.linspace(lo, hi, 200))

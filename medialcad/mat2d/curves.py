@@ -99,7 +99,7 @@ class NurbsCurve(Curve):
     degree: int
     period: float | None = None
 
-    def _splines(self) -> tuple[BSpline, BSpline, BSpline, BSpline, BSpline, BSpline]:
+    def _splines(self) -> tuple[BSpline, BSpline | None, BSpline | None]:
         cache = self.__dict__.get("_cache")
         if cache is None:
             hom = np.column_stack([self.poles * self.weights[:, None], self.weights])
@@ -108,7 +108,7 @@ class NurbsCurve(Curve):
             a2 = a.derivative(2) if self.degree >= 2 else None
             cache = (a, a1, a2)
             object.__setattr__(self, "_cache", cache)
-        return cache  # type: ignore[return-value]
+        return cache
 
     def derivs(self, t: ArrayLike) -> Derivs:
         tt = np.atleast_1d(np.asarray(t, dtype=float))

@@ -8,7 +8,7 @@ maps one to the other exactly (a rigid motion).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from enum import Enum
+from enum import StrEnum
 
 import numpy as np
 from numpy.typing import NDArray
@@ -22,7 +22,7 @@ FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
 
-class NodeKind(str, Enum):
+class NodeKind(StrEnum):
     """What a medial node is (paper Sec. 2.2)."""
 
     BRANCH_POINT = "branch_point"  # 3 or more footpoints
@@ -30,7 +30,7 @@ class NodeKind(str, Enum):
     CURVATURE_CENTRE = "curvature_centre"  # end point r = 1/k at a curvature maximum
 
 
-class ElementKind(str, Enum):
+class ElementKind(StrEnum):
     """Boundary elements the medial axis is equidistant to."""
 
     EDGE = "edge"

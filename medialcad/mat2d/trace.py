@@ -52,7 +52,6 @@ class TraceSettings:
 
     tol: float
     spacing: float  # initial boundary sample spacing
-    jump_slope: float = 8.0  # partner gap / step above which a step is refined
     max_fit_rounds: int = 10
     max_bisection_rounds: int = 64
     max_samples: int = 400_000
@@ -108,6 +107,13 @@ class _Tracer:
         self.fit_ok: set[tuple[int, float, float, int]] = set()
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
+        els = boundary.elements
+        self.elem_loop = np.array([e.loop for e in els], dtype=np.int64)
+        self.loop_first = np.array(
+            [min(e.index for e in els if e.loop == lp) for lp in range(len(self.L))]
+        )
+        self.loop_count = np.bincount(self.elem_loop, minlength=len(self.L))
+        self.elem_pos = np.array([e.index for e in els]) - self.loop_first[self.elem_loop]
         self.convex = [
             (c.loop, c.s % self.L[c.loop], c.point) for c in boundary.corners if c.turn > 0
         ]
@@ -123,6 +129,13 @@ class _Tracer:
         t = self.b.param_of(e, np.array([s]))
         p, n, k = self.b.frame_at(e, t)
         return p[0], n[0], float(k[0]), e.index, float(t[0])
+
+    def _adjacent(self, a: IntArray, b: IntArray) -> NDArray[np.bool_]:
+        """Whether elements ``a`` and ``b`` follow each other on their loop."""
+        pos, count, loop = self.elem_pos, self.loop_count, self.elem_loop
+        same = loop[a] == loop[b]
+        d = np.abs(pos[a] - pos[b])
+        return np.asarray(same & ((d == 1) | (d == count[loop[a]] - 1)))
 
     # -- events --------------------------------------------------------------------
     def _crosses_corner(self, loop: int, s0: FloatArray, ds: FloatArray) -> NDArray[np.bool_]:
@@ -237,7 +250,9 @@ class _Tracer:
         cont = np.where(cand & np.isfinite(ratio), ratio, np.inf)
         beside = np.minimum(np.roll(cont, 1), np.roll(cont, -1))
         beside = np.where(np.isfinite(beside), beside, 0.0)
-        jump = cand & (gap > cfg.tol) & (ratio > 4.0 * beside + cfg.jump_slope)
+        pe0, pe1 = S.partner_element[idx], S.partner_element[nxt]
+        apart = (pe0 != pe1) & ~self._adjacent(pe0, pe1)
+        jump = cand & (gap > cfg.tol) & ((ratio > 3.0 * beside + 1.0) | apart)
         split = jump & (ds > cfg.eps_s)
         new_loop += [lp] * int(split.sum())
         new_s += list(s0[split] + 0.5 * ds[split])
@@ -320,16 +335,18 @@ def _intervals(S: MapSamples, events: list[_Event], L: FloatArray) -> list[_Inte
     return out
 
 
-def _find_interval(intervals: list[_Interval], loop: int, s: float, L: FloatArray) -> int:
-    """The interval of ``loop`` whose stretch contains ``s`` (the most central one)."""
+def _find_interval(
+    intervals: list[_Interval], candidates: list[int], s: float, length: float
+) -> int:
+    """Among ``candidates`` (intervals of one loop), the one whose stretch contains ``s``
+    (the most central one)."""
     best, best_d = -1, -1.0
-    for i, iv in enumerate(intervals):
-        if iv.loop != loop:
-            continue
+    for i in candidates:
+        iv = intervals[i]
         if iv.start is None or iv.end is None:
             return i
-        start, span = _span(iv.start, iv.end, L[loop])
-        off = (s - start) % L[loop]
+        start, span = _span(iv.start, iv.end, length)
+        off = (s - start) % length
         if off <= span and min(off, span - off) > best_d:
             best, best_d = i, min(off, span - off)
     return best
@@ -361,21 +378,27 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
 
 
 def _dedupe(S: MapSamples, intervals: list[_Interval], L: FloatArray) -> list[_Interval]:
+    """Keep one of the two sides of every branch (the interval with the lower index)."""
+    by_loop: dict[int, list[int]] = {}
+    for i, iv in enumerate(intervals):
+        by_loop.setdefault(iv.loop, []).append(i)
     kept: list[_Interval] = []
     for i, iv in enumerate(intervals):
         if len(iv.samples) == 0:
-            if iv.start is not None and iv.end is not None and iv.start.node != iv.end.node:
-                # no sample between two distinct nodes: only the lower side keeps it
-                kept.append(iv) if _lower_side(iv, intervals, L) else None
+            # no sample between two distinct nodes: only the lower side keeps it
+            distinct = iv.start is not None and iv.end is not None and iv.start.node != iv.end.node
+            if distinct and _lower_side(iv, intervals):
+                kept.append(iv)
             continue
         mid = iv.samples[len(iv.samples) // 2]
-        j = _find_interval(intervals, int(S.partner_loop[mid]), float(S.partner_s[mid]), L)
+        lp = int(S.partner_loop[mid])
+        j = _find_interval(intervals, by_loop.get(lp, []), float(S.partner_s[mid]), L[lp])
         if j < 0 or j == i or i < j:
             kept.append(iv)
     return kept
 
 
-def _lower_side(iv: _Interval, intervals: list[_Interval], L: FloatArray) -> bool:
+def _lower_side(iv: _Interval, intervals: list[_Interval]) -> bool:
     assert iv.start is not None and iv.end is not None
     for other in intervals:
         if other is iv or other.start is None or other.end is None:
@@ -386,21 +409,19 @@ def _lower_side(iv: _Interval, intervals: list[_Interval], L: FloatArray) -> boo
 
 
 def _thin(S: MapSamples, iv: _Interval, gap: float) -> _Interval:
-    """Drop samples closer than ``gap`` to the previous point kept (the bisection that
+    """Drop samples closer than ``gap`` to the point before them (the bisection that
     isolates an event leaves clusters of them next to its node; interpolating through
     near-coincident points would make the spline oscillate)."""
     if len(iv.samples) == 0:
         return iv
     c = S.centre[iv.samples]
-    keep = np.zeros(len(c), dtype=bool)
-    last = iv.start.point if iv.start is not None else None
-    for i in range(len(c)):
-        if last is None or np.linalg.norm(c[i] - last) >= gap:
-            keep[i] = True
-            last = c[i]
+    prev = np.vstack([iv.start.point[None, :] if iv.start is not None else c[-1:], c[:-1]])
+    keep = np.linalg.norm(c - prev, axis=1) >= gap
+    if iv.start is None:
+        keep[0] = True
     if iv.end is not None:
-        while keep.any() and np.linalg.norm(c[np.nonzero(keep)[0][-1]] - iv.end.point) < gap:
-            keep[np.nonzero(keep)[0][-1]] = False
+        close = np.linalg.norm(c - iv.end.point, axis=1) < gap
+        keep &= ~close
     return _Interval(iv.loop, iv.start, iv.end, iv.samples[keep])
 
 
