@@ -155,6 +155,17 @@ class _Tracer:
         """The centre of curvature at the curvature maximum in ``[s0, s1]`` (golden section)."""
         length = self.L[loop]
         a, b = s0, s0 + (s1 - s0) % length
+        # the samples only bracket the maximum approximately: widen by half the bracket,
+        # staying on the curve that holds it
+        pad = 0.5 * (b - a) + 1e-3 * self.cfg.spacing
+        e = self.b.element_at(loop, float((0.5 * (a + b)) % length))
+        if e.piece is not None and e.length < length:
+            oa = (a - e.s0) % length
+            ob = oa + (b - a)
+            if ob <= e.length:
+                a, b = e.s0 + max(oa - pad, 0.0), e.s0 + min(ob + pad, e.length)
+        else:
+            a, b = a - pad, b + pad
         if b <= a:
             b = a + 1e-12
         g = (np.sqrt(5) - 1) / 2

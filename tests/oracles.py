@@ -1,0 +1,634 @@
+"""Independent oracles for the 2D medial axis transform (THEORY.md Sec. 3).
+
+These share no code with medialcad: every distance is an OpenCascade
+``BRepExtrema_DistShapeShape`` between a vertex and the face's boundary edges (a compound built
+once and loaded once), inside/outside is ``BRepClass_FaceClassifier``. Shapes may be given as
+``TopoDS_*`` or as cadquery/build123d objects (``.wrapped``, ``Workplane.val()``).
+
+The central primitive is the *medial depth* of a boundary point ``q`` along an inward
+direction ``u``: the largest ``s`` with ``dist(q + s u, dF) >= s - eps``. The predicate is
+monotone in ``s`` (triangle inequality: once a boundary point is closer than ``s`` it stays
+closer), so it is bracketed and solved by a safeguarded Newton iteration from the right
+(``g(s) = dist(q + s u) - s`` has slope ``u.w - 1`` where ``w`` points from the nearest
+boundary point) with bisection as the fallback. ``q + s* u`` is the true medial point on that
+ray.
+
+All errors are absolute (model units); divide by :func:`bbox_diagonal` to report them.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from OCP.Bnd import Bnd_Box
+from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
+from OCP.BRepClass import BRepClass_FaceClassifier
+from OCP.BRepExtrema import BRepExtrema_DistShapeShape, BRepExtrema_SupportType
+from OCP.GCPnts import GCPnts_AbscissaPoint
+from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Ellipse, GeomAbs_Line, GeomAbs_Plane
+from OCP.gp import gp_Pnt, gp_Vec
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_OUT, TopAbs_VERTEX
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
+from scipy.optimize import minimize_scalar
+from scipy.spatial import cKDTree
+
+__all__ = [
+    "FaceBoundary",
+    "ShapeDistance",
+    "as_occ",
+    "bbox_diagonal",
+    "completeness_2d",
+    "medial_points_2d",
+    "radius_error_2d",
+    "soundness_2d",
+]
+
+FloatArray = NDArray[np.float64]
+
+
+# --------------------------------------------------------------------------- helpers
+
+
+def as_occ(shape: Any) -> TopoDS_Shape:
+    """The ``TopoDS_Shape`` behind a raw OCP shape, a cadquery/build123d shape or Workplane."""
+    if isinstance(shape, TopoDS_Shape):
+        return shape
+    if hasattr(shape, "val") and callable(shape.val):  # cadquery Workplane
+        shape = shape.val()
+    wrapped = getattr(shape, "wrapped", None)
+    if isinstance(wrapped, TopoDS_Shape):
+        return wrapped
+    raise TypeError(f"not a shape: {type(shape).__name__}")
+
+
+def bbox_diagonal(shape: Any) -> float:
+    """Diagonal of the (optimal, geometry-only) bounding box of ``shape``."""
+    box = Bnd_Box()
+    BRepBndLib.AddOptimal_s(as_occ(shape), box, False, False)
+    xmin, ymin, zmin, xmax, ymax, zmax = box.Get()
+    return float(math.dist((xmin, ymin, zmin), (xmax, ymax, zmax)))
+
+
+def _pnt(p: FloatArray) -> gp_Pnt:
+    return gp_Pnt(float(p[0]), float(p[1]), float(p[2]))
+
+
+def _xyz(p: gp_Pnt | gp_Vec) -> FloatArray:
+    return np.array([p.X(), p.Y(), p.Z()])
+
+
+def _vertex(p: FloatArray) -> TopoDS_Shape:
+    return BRepBuilderAPI_MakeVertex(_pnt(p)).Vertex()
+
+
+def _subshapes(shape: TopoDS_Shape, kind: Any) -> list[TopoDS_Shape]:
+    out: list[TopoDS_Shape] = []
+    ex = TopExp_Explorer(shape, kind)
+    while ex.More():
+        s = ex.Current()
+        if not any(s.IsSame(o) for o in out):
+            out.append(s)
+        ex.Next()
+    return out
+
+
+class ShapeDistance:
+    """Distance from points to a fixed shape, one ``BRepExtrema_DistShapeShape`` reused."""
+
+    def __init__(self, shape: Any) -> None:
+        self.shape = as_occ(shape)
+        self._dss = BRepExtrema_DistShapeShape()
+        self._dss.LoadS2(self.shape)
+        self._last = 1
+
+    def nearest(self, p: ArrayLike) -> tuple[float, FloatArray]:
+        """``(distance, nearest point on the shape)`` for one point ``p (3,)``."""
+        dss = self._dss
+        x = np.asarray(p, dtype=float)
+        dss.LoadS1(_vertex(x))
+        if not dss.Perform() or not dss.IsDone() or dss.NbSolution() < 1:
+            raise RuntimeError("BRepExtrema_DistShapeShape failed")
+        # Every extremum within the deflection (Precision::Confusion, 1e-7 absolute) of the
+        # minimum is a "solution", in no particular order: pick the truly nearest one.
+        best, best_i, best_q = math.inf, 1, x
+        for i in range(1, dss.NbSolution() + 1):
+            q = _xyz(dss.PointOnShape2(i))
+            dq = float(np.linalg.norm(q - x))
+            if dq < best:
+                best, best_i, best_q = dq, i, q
+        self._last = best_i
+        return float(dss.Value()), best_q
+
+    def support(self) -> tuple[TopoDS_Shape, Any, float | None]:
+        """Support of the first solution of the last :meth:`nearest` call:
+        ``(shape, BRepExtrema_SupportType, edge parameter or None)``."""
+        dss, i = self._dss, self._last
+        kind = dss.SupportTypeShape2(i)
+        par = dss.ParOnEdgeS2(i) if kind == BRepExtrema_SupportType.BRepExtrema_IsOnEdge else None
+        if isinstance(par, tuple):
+            par = par[0]
+        return dss.SupportOnShape2(i), kind, par
+
+    def distances(self, points: ArrayLike) -> FloatArray:
+        pts = np.atleast_2d(np.asarray(points, dtype=float))
+        return np.array([self.nearest(p)[0] for p in pts])
+
+
+# --------------------------------------------------------------------------- the boundary
+
+
+class FaceBoundary:
+    """A planar face's boundary as a distance oracle, plus inside tests and boundary samples.
+
+    Args:
+        face: the planar face (any wrapper).
+        eps: slack of the medial predicate ``dist(q + s u) >= s - eps`` and the resolution
+            of the medial depth; default ``1e-12`` of the bounding-box diagonal (plus the
+            rounding of the coordinates' magnitude).
+        eta: how far the nearest boundary point of ``q + s u`` may drift from ``q`` before
+            ``s`` counts as past the medial point when ``dist`` alone cannot tell (see
+            :meth:`_probe`); default ``1e-6`` of the diagonal.
+    """
+
+    def __init__(self, face: Any, eps: float | None = None, eta: float | None = None) -> None:
+        self.face: TopoDS_Face = TopoDS.Face_s(as_occ(face))
+        surf = BRepAdaptor_Surface(self.face)
+        if surf.GetType() != GeomAbs_Plane:
+            raise ValueError("oracle: the face is not planar")
+        self.normal = _xyz(surf.Plane().Axis().Direction())
+        self.edges = [TopoDS.Edge_s(e) for e in _subshapes(self.face, TopAbs_EDGE)]
+        self.vertices = [
+            _xyz(BRep_Tool.Pnt_s(TopoDS.Vertex_s(v))) for v in _subshapes(self.face, TopAbs_VERTEX)
+        ]
+        comp = TopoDS_Compound()
+        builder = BRep_Builder()
+        builder.MakeCompound(comp)
+        for e in self.edges:
+            builder.Add(comp, e)
+        self.compound = comp
+        self.diag = bbox_diagonal(self.face)
+        self._dist = ShapeDistance(comp)
+        scale = max(1.0, float(np.abs(self.vertices).max()) if self.vertices else 1.0, self.diag)
+        self.eps = eps if eps is not None else 1e-12 * self.diag + 1e-15 * scale
+        self.eta = eta if eta is not None else 1e-6 * self.diag
+        self.edge_tol = max(BRep_Tool.Tolerance_s(e) for e in self.edges)
+        self.class_tol = max(1e-9 * self.diag, self.edge_tol)
+        self.curves = [BRepAdaptor_Curve(e) for e in self.edges]
+        #: ``(edge index, parameter)`` of the foot found by the last :meth:`nearest` (None: a vertex)
+        self.last_foot: tuple[int, float] | None = None
+        self.last_vertex: Any = None
+        self._build_samples()
+        self._edge_sign = [self._inward_sign(i) for i in range(len(self.edges))]
+        self.convex_corners = np.array(
+            [v for v in self.vertices if self._is_convex_corner(v)]
+        ).reshape(-1, 3)
+
+    # -- primitives
+
+    def _build_samples(self, total: int = 6000, per_edge: int = 64) -> None:
+        """Dense boundary samples (a KD-tree) seeding local projections; see :meth:`nearest`."""
+        lengths = np.array([float(GCPnts_AbscissaPoint.Length_s(c)) for c in self.curves])
+        pts, edge, par = [], [], []
+        for i, c in enumerate(self.curves):
+            k = max(per_edge, int(total * lengths[i] / lengths.sum()))
+            ts = np.linspace(c.FirstParameter(), c.LastParameter(), k + 1)
+            pts.extend(_xyz(c.Value(float(t))) for t in ts)
+            edge.extend([i] * len(ts))
+            par.extend(ts)
+        self._spts = np.array(pts)
+        self._sedge = np.array(edge)
+        self._spar = np.array(par)
+        steps = np.linalg.norm(np.diff(self._spts, axis=0), axis=1)
+        steps[np.diff(self._sedge) != 0] = 0.0
+        self._sh = float(steps.max())
+        # DSS is exact on lines, circles and ellipses; only other edges need checking
+        exact = {GeomAbs_Line, GeomAbs_Circle, GeomAbs_Ellipse}
+        check = np.array([self.curves[i].GetType() not in exact for i in self._sedge])
+        self._check_idx = np.flatnonzero(check)
+        self._tree = cKDTree(self._spts[check]) if check.any() else None
+
+    def _project_local(
+        self, x: FloatArray, i: int, t: float, a: float, b: float
+    ) -> tuple[float, FloatArray, float]:
+        """Local minimum of ``|C_i(t) - x|`` for ``t`` in ``[a, b]`` by Newton from ``t``."""
+        c = self.curves[i]
+        p, d1, d2 = gp_Pnt(), gp_Vec(), gp_Vec()
+        for _ in range(30):
+            c.D2(t, p, d1, d2)
+            r = _xyz(p) - x
+            v1, v2 = _xyz(d1), _xyz(d2)
+            f, df = r @ v1, v1 @ v1 + r @ v2
+            step = -f / df if df > 0 else -f / max(v1 @ v1, 1e-300)
+            t_new = min(max(t + step, a), b)
+            # quadratic convergence: after a step this small the error is ~(1e-8 h)^2 / radius
+            if abs(t_new - t) * math.sqrt(v1 @ v1) <= 1e-8 * self._sh:
+                t = t_new
+                break
+            t = t_new
+        q = _xyz(c.Value(t))
+        return float(np.linalg.norm(q - x)), q, t
+
+    def nearest(self, p: ArrayLike) -> tuple[float, FloatArray]:
+        """``(dist(p, dF), nearest boundary point)``.
+
+        ``BRepExtrema_DistShapeShape`` alone is not trusted: on B-spline edges it can miss
+        the global minimum (a second, nearer foot on the same edge, the distance then jumps as
+        the query point moves). Every local minimum of the dense boundary samples within
+        reach of the sampled minimum seeds a Newton projection; the least distance wins.
+        """
+        x = np.asarray(p, dtype=float)
+        d, q = self._dist.nearest(x)
+        support, kind, par = self._dist.support()
+        ei = (
+            self.edge_index(support)
+            if kind == BRepExtrema_SupportType.BRepExtrema_IsOnEdge and par is not None
+            else None
+        )
+        self.last_foot = (ei, float(par)) if ei is not None and par is not None else None
+        self.last_vertex = (
+            TopoDS.Vertex_s(support)
+            if kind == BRepExtrema_SupportType.BRepExtrema_IsVertex
+            else None
+        )
+        if self._tree is None:
+            return d, q
+        # a foot nearer than d has a sample within h/2 of it, hence within d + h/2 of x
+        idx = self._check_idx[
+            np.array(self._tree.query_ball_point(x, d + 0.5 * self._sh), dtype=int)
+        ]
+        if len(idx):  # samples next to the foot DSS found would only find it again
+            idx = idx[np.linalg.norm(self._spts[idx] - q, axis=1) > 2.0 * self._sh]
+        if len(idx) == 0:
+            return d, q
+        idx.sort()
+        ds = np.linalg.norm(self._spts[idx] - x, axis=1)
+        n = len(self._spts)
+        full = (
+            np.linalg.norm(self._spts[np.clip(idx - 1, 0, n - 1)] - x, axis=1),
+            np.linalg.norm(self._spts[np.clip(idx + 1, 0, n - 1)] - x, axis=1),
+        )
+        same_prev = self._sedge[np.clip(idx - 1, 0, n - 1)] == self._sedge[idx]
+        same_next = self._sedge[np.clip(idx + 1, 0, n - 1)] == self._sedge[idx]
+        is_min = (~same_prev | (ds <= full[0])) & (~same_next | (ds <= full[1]))
+        cand = idx[is_min]
+        cand = cand[np.argsort(np.linalg.norm(self._spts[cand] - x, axis=1))][:12]
+        for j in cand:
+            i = int(self._sedge[j])
+            a = self._spar[j - 1] if j > 0 and self._sedge[j - 1] == i else self._spar[j]
+            b = self._spar[j + 1] if j + 1 < n and self._sedge[j + 1] == i else self._spar[j]
+            dj, qj, tj = self._project_local(x, i, float(self._spar[j]), float(a), float(b))
+            if dj < d - 1e-15 * max(1.0, d):
+                d, q, self.last_foot, self.last_vertex = dj, qj, (i, tj), None
+        return d, q
+
+    def distances(self, points: ArrayLike) -> FloatArray:
+        return self._dist.distances(points)
+
+    def inside(self, p: ArrayLike, tol: float | None = None) -> bool:
+        """Whether ``p`` is in the closed face (and within ``tol`` of its plane)."""
+        q = np.asarray(p, dtype=float)
+        tol = self.class_tol if tol is None else tol
+        if abs((q - self.vertices[0]) @ self.normal) > max(tol, 1e-9 * self.diag):
+            return False
+        state = BRepClass_FaceClassifier(self.face, _pnt(q), tol).State()
+        return bool(state != TopAbs_OUT)
+
+    def _probe(self, q: FloatArray, u: FloatArray, s: float) -> tuple[bool, float, FloatArray]:
+        """Is ``q + s u`` at or before the medial point? Both ``dist >= s - eps`` and "its
+        nearest boundary point is still ``q`` (within ``eta``)" must hold: the first alone
+        resolves ``s*`` only to ``sqrt(eps * r)`` where the axis ends at a curvature centre
+        (there ``dist - s`` vanishes to second order while the footpoint moves like
+        ``sqrt(s - s*)``)."""
+        x = q + s * u
+        d, b = self.nearest(x)
+        w = (x - b) / d if d > 0 else u
+        ok = d >= s - self.eps and (d >= s or float(np.linalg.norm(b - q)) <= self.eta)
+        return ok, d, w
+
+    def _sampled_depth_bound(self, q: FloatArray, u: FloatArray) -> float:
+        """An upper bound of the medial depth: the least radius of the disks tangent at ``q``
+        (centre on ``q + s u``) through a boundary sample ``y``: ``|y - q|^2 / (2 u.(y - q))``."""
+        v = self._spts - q
+        h = v @ u
+        ok = (h > 1e-9 * self.diag) & (np.einsum("ij,ij->i", v, v) > (1e-4 * self.diag) ** 2)
+        if not ok.any():
+            return math.inf
+        return float(np.min(np.einsum("ij,ij->i", v[ok], v[ok]) / (2 * h[ok])))
+
+    def feet_at_vertex(self, vertex: Any, u: FloatArray) -> list[tuple[int, float]]:
+        """``(edge, parameter)`` at ``vertex`` of the edges whose inward normal there is ``u``
+        (both sides of a smooth joint, or of the seam of a closed edge); empty at a corner."""
+        out = []
+        for i, e in enumerate(self.edges):
+            ex = TopExp_Explorer(e, TopAbs_VERTEX)
+            while ex.More():
+                if ex.Current().IsSame(vertex):
+                    t = BRep_Tool.Parameter_s(vertex, e)
+                    _, nrm = self.inward_normal(i, t)
+                    if float(nrm @ u) > 1 - 1e-10:
+                        out.append((i, float(t)))
+                ex.Next()
+        return out
+
+    def curvature_radius(self, i: int, t: float) -> float:
+        """``1/k`` for the curvature ``k`` of edge ``i`` at ``t``, signed positive where the
+        boundary is convex (bends towards the interior); ``inf`` where it is not."""
+        p, d1, d2 = gp_Pnt(), gp_Vec(), gp_Vec()
+        self.curves[i].D2(t, p, d1, d2)
+        _, nrm = self.inward_normal(i, t)
+        v1 = _xyz(d1)
+        k = float(_xyz(d2) @ nrm) / float(v1 @ v1)
+        return 1.0 / k if k > 1e-12 / self.diag else math.inf
+
+    def medial_depth(
+        self,
+        q: ArrayLike,
+        u: ArrayLike,
+        guess: float | None = None,
+        max_depth: float = math.inf,
+    ) -> float:
+        """Largest ``s`` with ``dist(q + s u, dF) >= s - eps`` for a boundary point ``q`` and an
+        inward unit direction ``u`` (the ray must enter the face).
+
+        ``max_depth``: a known upper bound; pass the radius of curvature at ``q`` when ``u`` is
+        the normal there (the curvature criterion, exact where distances alone resolve the
+        depth only to second order: at curvature-centre end points)."""
+        q = np.asarray(q, dtype=float)
+        u = np.asarray(u, dtype=float)
+        u = u / np.linalg.norm(u)
+        xtol = self.eps
+        bound = min(1.01 * self.diag, self._sampled_depth_bound(q, u), max_depth)
+        lo, hi = 0.0, bound + 10 * self.eps
+        s = guess if guess is not None and lo < guess < hi else hi - 5 * self.eps
+        expand, oks, fails = xtol, 0, 0
+        for _ in range(400):
+            ok, d, w = self._probe(q, u, s)
+            if ok:
+                lo, oks, fails = s, oks + 1, 0
+            else:
+                hi, oks, fails = s, 0, fails + 1
+            if hi - lo <= xtol:
+                break
+            cand: float | None = None
+            if ok:  # step right, growing: a good guess is confirmed in one more probe
+                expand = xtol if oks == 1 else 8.0 * expand
+                cand = lo + expand
+            else:
+                slope = float(u @ w) - 1.0
+                if slope < -1e-15:
+                    newton = s - (d - s) / slope  # from the right: newton <= s
+                    # slow (second-order) convergence: overshoot on purpose to find an ok
+                    cand = newton if fails <= 2 else hi - 4.0 * (hi - newton)
+                    if hi - cand < 0.5 * xtol:
+                        cand = hi - xtol
+            if cand is None or not (lo < cand < hi):
+                cand = 0.5 * (lo + hi)
+            s = cand
+        return 0.5 * (lo + hi)
+
+    # -- boundary geometry
+
+    def _tangent(self, i: int, t: float) -> tuple[FloatArray, FloatArray]:
+        p, v = gp_Pnt(), gp_Vec()
+        self.curves[i].D1(t, p, v)
+        return _xyz(p), _xyz(v)
+
+    def _inward_sign(self, i: int) -> float:
+        """+1 if ``normal x tangent`` points into the face along edge ``i``, else -1 (decided
+        by classifying probes on both sides of a few points of the edge)."""
+        c = self.curves[i]
+        votes = 0.0
+        for f in (0.5, 0.3, 0.7, 0.1, 0.9):  # stops after two agreeing votes
+            t = c.FirstParameter() + f * (c.LastParameter() - c.FirstParameter())
+            b, tan = self._tangent(i, t)
+            nrm = np.cross(self.normal, tan)
+            if np.linalg.norm(nrm) == 0:
+                continue
+            nrm /= np.linalg.norm(nrm)
+            for delta in (1e-4 * self.diag, 1e-6 * self.diag, 100 * self.class_tol):
+                plus = self.inside(b + delta * nrm, self.class_tol)
+                minus = self.inside(b - delta * nrm, self.class_tol)
+                if plus != minus:
+                    votes += 1.0 if plus else -1.0
+                    break
+            if abs(votes) >= 2:
+                break
+        if votes == 0:
+            raise RuntimeError(f"oracle: cannot orient edge {i}")
+        return 1.0 if votes > 0 else -1.0
+
+    def inward_normal(self, i: int, t: float) -> tuple[FloatArray, FloatArray]:
+        """``(point, inward unit normal)`` of edge ``i`` at parameter ``t``."""
+        b, tan = self._tangent(i, t)
+        n = np.cross(self.normal, tan)
+        return b, self._edge_sign[i] * n / np.linalg.norm(n)
+
+    def _is_convex_corner(self, v: FloatArray) -> bool:
+        """A vertex is a convex corner iff the probe on the bisector of the two edge directions
+        leaving it lies in the face (an interior angle below 180 degrees); a G1 joint is not."""
+        dirs = []
+        for i, e in enumerate(self.edges):
+            c = self.curves[i]
+            ex = TopExp_Explorer(e, TopAbs_VERTEX)
+            while ex.More():
+                vx = TopoDS.Vertex_s(ex.Current())
+                if np.linalg.norm(_xyz(BRep_Tool.Pnt_s(vx)) - v) <= 10 * self.edge_tol:
+                    t = BRep_Tool.Parameter_s(vx, e)
+                    first = abs(t - c.FirstParameter()) <= abs(t - c.LastParameter())
+                    _, tan = self._tangent(i, c.FirstParameter() if first else c.LastParameter())
+                    dirs.append((1.0 if first else -1.0) * tan / np.linalg.norm(tan))
+                ex.Next()
+        if len(dirs) != 2:
+            raise RuntimeError(f"oracle: vertex with {len(dirs)} edge ends")
+        bis = dirs[0] + dirs[1]
+        if np.linalg.norm(bis) < 1e-7:  # tangent joint
+            return False
+        dmin = min(
+            (float(np.linalg.norm(v - w)) for w in self.vertices if np.linalg.norm(v - w) > 0),
+            default=self.diag,
+        )
+        delta = min(1e-4 * self.diag, 0.1 * dmin)
+        return self.inside(v + delta * bis / np.linalg.norm(bis))
+
+    def edge_length(self, i: int) -> float:
+        return float(GCPnts_AbscissaPoint.Length_s(self.curves[i]))
+
+    def boundary_samples(self, n: int) -> tuple[FloatArray, FloatArray, list[tuple[int, float]]]:
+        """About ``n`` boundary points spread by length (parameter midpoints, never a vertex):
+        ``(points (N, 3), inward normals (N, 3), [(edge, param)])``."""
+        lengths = np.array([self.edge_length(i) for i in range(len(self.edges))])
+        pts, nrms, where = [], [], []
+        for i, length in enumerate(lengths):
+            k = max(2, round(n * length / lengths.sum()))
+            c = self.curves[i]
+            t0, t1 = c.FirstParameter(), c.LastParameter()
+            for j in range(k):
+                t = t0 + (j + 0.5) / k * (t1 - t0)
+                b, nrm = self.inward_normal(i, t)
+                pts.append(b), nrms.append(nrm), where.append((i, t))
+        return np.array(pts), np.array(nrms), where
+
+    def near_convex_corner(self, p: FloatArray, dist: float) -> bool:
+        if len(self.convex_corners) == 0:
+            return False
+        return bool(np.linalg.norm(self.convex_corners - p, axis=1).min() <= dist)
+
+    def edge_index(self, shape: TopoDS_Shape) -> int | None:
+        if not hasattr(self, "_edge_hash"):
+            self._edge_hash: dict[int, list[int]] = {}
+            for i, e in enumerate(self.edges):
+                self._edge_hash.setdefault(hash(e), []).append(i)
+        for i in self._edge_hash.get(hash(shape), range(len(self.edges))):
+            if self.edges[i].IsSame(shape):
+                return i
+        for i, e in enumerate(self.edges):  # hash of a differently oriented copy
+            if e.IsSame(shape):
+                return i
+        return None
+
+    # -- the medial axis near a point
+
+    def medial_point(self, i: int, t: float) -> FloatArray:
+        """The true medial point ``b + s* n`` of the boundary point of edge ``i`` at ``t``."""
+        b, nrm = self.inward_normal(i, t)
+        return b + self.medial_depth(b, nrm, max_depth=self.curvature_radius(i, t)) * nrm
+
+    def local_medial_distance(self, p: FloatArray, i: int, t: float, window: float) -> float:
+        """Distance from ``p`` to the true medial points whose footpoint on edge ``i`` lies
+        within arc length ``window`` of parameter ``t`` (a local 1D minimisation)."""
+        c = self.curves[i]
+        t0, t1 = c.FirstParameter(), c.LastParameter()
+        speed = max(float(np.linalg.norm(self._tangent(i, t)[1])), 1e-300)
+        a, b = max(t0, t - window / speed), min(t1, t + window / speed)
+
+        def f(tt: float) -> float:
+            return float(np.linalg.norm(p - self.medial_point(i, tt)))
+
+        grid = np.linspace(a, b, 13)
+        vals = [f(tt) for tt in grid]
+        k = int(np.argmin(vals))
+        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
+        if hi <= lo:
+            return vals[k]
+        res = minimize_scalar(
+            f, bounds=(lo, hi), method="bounded", options={"xatol": (hi - lo) * 1e-7}
+        )
+        return float(min(vals[k], res.fun))
+
+
+def _boundary(face: Any) -> FaceBoundary:
+    return face if isinstance(face, FaceBoundary) else FaceBoundary(face)
+
+
+# --------------------------------------------------------------------------- the oracles
+
+
+def soundness_2d(face: Any, points3d: ArrayLike, tol: float, refine: bool = True) -> FloatArray:
+    """Soundness errors of output samples: how far each sample is from being medial.
+
+    For a sample ``p``: ``q`` = nearest boundary point, ``u = (p - q)/|p - q|``, ``s*`` the medial
+    depth of ``q`` along ``u``; the error is ``|s* - |p - q||`` (0 on the medial axis). A sample
+    outside the face (or off its plane by more than ``tol``) is ``inf``. A sample within ``tol``
+    of the boundary is 0 if it is within ``tol`` of a convex corner (an ``r = 0`` end point),
+    else its distance to the nearest convex corner (or ``inf``).
+
+    The ray error magnifies a sample's offset ``delta`` across the axis by ``1/sin(theta)``
+    (``theta``: angle between the ray and the axis), which blows up near curvature-centre end
+    points. With ``refine`` (default), samples whose ray error exceeds ``tol/2`` are
+    re-measured as their distance to the true medial points whose footpoints lie near ``q``
+    (a local minimisation over the footpoint parameter), and the smaller value is returned.
+
+    Args:
+        face: the planar face (or a :class:`FaceBoundary` to reuse).
+        points3d: ``(N, 3)`` model-space samples.
+        tol: the result's tolerance (absolute).
+    """
+    fb = _boundary(face)
+    pts = np.atleast_2d(np.asarray(points3d, dtype=float))
+    errs = np.empty(len(pts))
+    for k, p in enumerate(pts):
+        if abs((p - fb.vertices[0]) @ fb.normal) > max(tol, 1e-9 * fb.diag):
+            errs[k] = np.inf
+            continue
+        d, q = fb.nearest(p)
+        if d <= tol:
+            if len(fb.convex_corners) == 0:
+                errs[k] = np.inf
+            else:
+                dc = float(np.linalg.norm(fb.convex_corners - p, axis=1).min())
+                errs[k] = 0.0 if dc <= tol else dc
+            continue
+        if not fb.inside(p):
+            errs[k] = np.inf
+            continue
+        foot = fb.last_foot
+        u = (p - q) / d
+        feet = [foot] if foot is not None else []
+        if foot is None and fb.last_vertex is not None:
+            feet = fb.feet_at_vertex(fb.last_vertex, u)
+            foot = feet[0] if feet else None
+        # the curvature criterion on every side of the foot (a G1 line-arc joint: the arc's)
+        kappa_r = min((fb.curvature_radius(*f) for f in feet), default=math.inf)
+        s_star = fb.medial_depth(q, u, guess=d, max_depth=kappa_r)
+        e = abs(s_star - d)
+        if refine and e > 0.5 * tol and foot is not None:
+            window = 4.0 * math.sqrt(e * fb.diag) + 4.0 * e
+            e = min(e, fb.local_medial_distance(p, foot[0], foot[1], window))
+        errs[k] = e
+    return errs
+
+
+def medial_points_2d(face: Any, n_samples: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """True medial points from boundary samples: ``(b (N, 3), m (N, 3), radius (N,))`` with
+    ``m = b + s* n`` (``n`` the inward normal at ``b``, ``s*`` its medial depth)."""
+    fb = _boundary(face)
+    b, nrm, where = fb.boundary_samples(n_samples)
+    s = np.array(
+        [
+            fb.medial_depth(bi, ni, max_depth=fb.curvature_radius(i, t))
+            for bi, ni, (i, t) in zip(b, nrm, where, strict=True)
+        ]
+    )
+    return b, b + s[:, None] * nrm, s
+
+
+def completeness_2d(
+    face: Any,
+    compound_or_points: Any,
+    n_samples: int = 200,
+    corner_skip: float | None = None,
+) -> FloatArray:
+    """Completeness errors: distance from true medial points to the output.
+
+    Boundary samples ``b`` (spread by length, never at a vertex) with inward normals ``n`` give
+    true medial points ``m = b + s* n``; the error of each is the distance from ``m`` to the
+    output: a shape (``to_compound()``; ``BRepExtrema_DistShapeShape``) or an ``(N, 3)`` array of
+    points (nearest point, so it includes the sampling gap). Samples within ``corner_skip``
+    (default ``1e-6`` of the diagonal) of a convex corner are skipped (NaN).
+    """
+    fb = _boundary(face)
+    b, m, _ = medial_points_2d(fb, n_samples)
+    skip = 1e-6 * fb.diag if corner_skip is None else corner_skip
+    keep = np.array([not fb.near_convex_corner(bi, skip) for bi in b])
+    errs = np.full(len(b), np.nan)
+    if isinstance(compound_or_points, (np.ndarray, Sequence)):
+        out = np.atleast_2d(np.asarray(compound_or_points, dtype=float))
+        errs[keep] = cKDTree(out).query(m[keep])[0]
+    else:
+        target = ShapeDistance(compound_or_points)
+        errs[keep] = target.distances(m[keep])
+    return errs
+
+
+def radius_error_2d(face: Any, points3d: ArrayLike, radii: ArrayLike) -> FloatArray:
+    """``|r - dist(p, dF)|`` for each sample ``p`` and the radius ``r`` it carries."""
+    fb = _boundary(face)
+    return np.abs(np.asarray(radii, dtype=float) - fb.distances(points3d))

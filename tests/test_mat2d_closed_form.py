@@ -1,0 +1,283 @@
+"""The 2D medial axis against the closed forms of THEORY.md Sec. 4 (and a few more), each in
+the xy-plane and in a tilted plane far from the origin."""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+
+import numpy as np
+import pytest
+
+from medialcad import NodeKind
+from tests import faces as F
+from tests import oracles as O
+from tests._mat import ClosedForm, compound, compute, cycle_rank, sample, segment
+
+PLACEMENTS = [pytest.param(F.IDENTITY, id="xy"), pytest.param(F.TILTED_FAR, id="tilted_far")]
+BP, CV, CC = NodeKind.BRANCH_POINT, NodeKind.CONVEX_VERTEX, NodeKind.CURVATURE_CENTRE
+
+
+def check_against(
+    face: object,
+    pl: F.Placement,
+    cf: ClosedForm,
+    tol: float | None = None,
+    factor: float = 1.0,
+) -> tuple[object, float, float]:
+    """Run the engine; every sample (and node) lies within ``factor * tol`` of the closed
+    form with the right radius, in the face's plane; every closed-form point is within
+    ``factor * tol`` of the output compound. Returns ``(result, geometric error, radius error)``
+    relative to the bounding-box diagonal."""
+    diag = O.bbox_diagonal(face)
+    res = compute(face, None if tol is None else tol * diag)
+    t = res.tol
+    assert t == pytest.approx((1e-5 if tol is None else tol) * diag, rel=1e-6)
+    pts, radius = sample(res, 60)
+    loc = pl.to_local(pts)
+    assert np.abs(loc[:, 2]).max() <= factor * t, "samples off the face's plane"
+    dist, r_cf = cf.project(loc[:, :2])
+    assert dist.max() <= factor * t, f"sample off the closed form by {dist.max() / diag:.2e} diag"
+    rad_err = np.abs(radius - r_cf)
+    assert rad_err.max() <= factor * t, f"radius error {rad_err.max() / diag:.2e} diag"
+    for node in res.nodes:
+        loc_n = pl.to_local(node.point[None])
+        d_n, r_n = cf.project(loc_n[:, :2])
+        assert d_n[0] <= factor * t and abs(node.radius - r_n[0]) <= factor * t
+        assert np.allclose(res.frame.to_3d(node.point_2d), node.point, atol=factor * t)
+    # completeness against the closed form
+    target = O.ShapeDistance(compound(res))
+    miss = target.distances(pl.to_model(cf.points(30)))
+    assert miss.max() <= factor * t, f"closed-form point missed by {miss.max() / diag:.2e} diag"
+    print(
+        f"geometric {dist.max() / diag:.2e}  radius {rad_err.max() / diag:.2e}  (tol {t / diag:.1e})"
+    )
+    return res, float(dist.max() / diag), float(rad_err.max() / diag)
+
+
+def kinds(res: object) -> Counter:
+    return Counter(n.kind for n in res.nodes)  # type: ignore[attr-defined]
+
+
+def rectangle_cf(a: float, b: float) -> ClosedForm:
+    pieces = [segment((-(a - b), 0), (a - b, 0), b, b)]
+    for sx in (1, -1):
+        for sy in (1, -1):
+            pieces.append(segment((sx * (a - b), 0), (sx * a, sy * b), b, 0.0))
+    return ClosedForm(pieces)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_rectangle(pl: F.Placement) -> None:
+    a, b = 2.0, 1.0
+    res, _, _ = check_against(F.place(F.rectangle(a, b), pl), pl, rectangle_cf(a, b))
+    assert kinds(res) == Counter({BP: 2, CV: 4})
+    assert len(res.branches) == 5 and all(not br.closed for br in res.branches)
+    for n in res.branch_points:
+        assert len(n.footpoints) == 3 and n.radius == pytest.approx(b, abs=res.tol)
+    for n in res.end_points:
+        assert n.radius == pytest.approx(0.0, abs=res.tol)
+    assert res.rmax == pytest.approx(b, abs=res.tol)
+    assert cycle_rank(res) == (1, 0)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_square_degenerate_branch_point(pl: F.Placement) -> None:
+    a = 1.0
+    cf = ClosedForm([segment((0, 0), (sx * a, sy * a), a, 0.0) for sx in (1, -1) for sy in (1, -1)])
+    res, _, _ = check_against(F.place(F.square(a), pl), pl, cf)
+    assert kinds(res) == Counter({BP: 1, CV: 4})
+    (centre,) = res.branch_points
+    assert len(centre.footpoints) == 4 and centre.radius == pytest.approx(a, abs=res.tol)
+    assert len(res.branches) == 4
+    assert cycle_rank(res) == (1, 0)
+
+
+def ellipse_cf(a: float, b: float) -> ClosedForm:
+    c = (a * a - b * b) / a
+    x = np.linspace(-c, c, 4001)
+
+    def radius(p: np.ndarray) -> np.ndarray:
+        return b * np.sqrt(np.clip(1 - p[:, 0] ** 2 / (a * a - b * b), 0.0, None))
+
+    pts = np.c_[x, 0 * x]
+    return ClosedForm([(pts, radius(pts))], radius_fn=radius)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_ellipse(pl: F.Placement) -> None:
+    a, b = 3.0, 1.0
+    res, _, _ = check_against(F.place(F.ellipse(a, b), pl), pl, ellipse_cf(a, b))
+    assert kinds(res) == Counter({CC: 2})
+    assert len(res.branches) == 1
+    for n in res.end_points:
+        assert n.radius == pytest.approx(b * b / a, abs=res.tol)
+        loc = pl.to_local(n.point[None])[0]
+        assert abs(abs(loc[0]) - (a * a - b * b) / a) <= res.tol
+    assert cycle_rank(res) == (1, 0)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_annulus(pl: F.Placement) -> None:
+    ri, ro = 1.0, 2.0
+    th = np.linspace(0, 2 * np.pi, 4001)
+    rm = (ri + ro) / 2
+    cf = ClosedForm([(np.c_[rm * np.cos(th), rm * np.sin(th)], np.full(len(th), (ro - ri) / 2))])
+    res, _, _ = check_against(F.place(F.annulus(ri, ro), pl), pl, cf)
+    assert len(res.nodes) == 0
+    assert len(res.branches) == 1 and res.branches[0].closed
+    assert cycle_rank(res) == (1, 1)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_slot_with_holes(pl: F.Placement) -> None:
+    # stadium |x| <= L dilated by R; holes of radius rh centred at (+-c, 0). Around each hole
+    # two parabolic arcs (focus the hole centre, directrix y = +-(R + rh)):
+    # y = +-((R + rh)^2 - (x - c)^2) / (2 (R + rh)), r = R - |y|, meeting the axis at the branch
+    # points x = c +- (R + rh); the axis runs on to the curvature centres (+-L, 0), r = R.
+    L, R, c, rh = 3.0, 1.0, 1.5, 0.25
+    k = R + rh
+    pieces = [
+        segment((-L, 0), (-c - k, 0), R, R),
+        segment((-c + k, 0), (c - k, 0), R, R),
+        segment((c + k, 0), (L, 0), R, R),
+    ]
+    for cx in (-c, c):
+        x = np.linspace(cx - k, cx + k, 4001)
+        y = (k * k - (x - cx) ** 2) / (2 * k)
+        pieces += [(np.c_[x, y], R - y), (np.c_[x, -y], R - y)]
+    face = F.place(F.slot_with_holes(L, R, ((-c, rh), (c, rh))), pl)
+    res, _, _ = check_against(face, pl, ClosedForm(pieces))
+    assert kinds(res) == Counter({BP: 4, CC: 2})
+    assert len(res.branches) == 7
+    for n in res.branch_points:
+        assert len(n.footpoints) == 3 and n.radius == pytest.approx(R, abs=res.tol)
+    assert cycle_rank(res) == (1, 2)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_l_shape_parabola(pl: F.Placement) -> None:
+    # L = [0,2]^2 minus (1,2]^2, reflex vertex v = (1,1). By symmetry about y = x: the corner
+    # diagonal (0,0)-(s,s), s = 2 - sqrt(2), a branch point there; a parabola (focus v,
+    # directrix y = 0) from (s,s) to (1, 1/2), the segment y = 1/2 to the branch point
+    # (3/2, 1/2), whose diagonals go to (2,0) and (2,1); mirrored in y = x.
+    s = 2 - math.sqrt(2)
+    x = np.linspace(s, 1.0, 4001)
+    y = ((x - 1) ** 2 + 1) / 2
+    half = [
+        (np.c_[x, y], y),
+        segment((1, 0.5), (1.5, 0.5), 0.5, 0.5),
+        segment((1.5, 0.5), (2, 0), 0.5, 0.0),
+        segment((1.5, 0.5), (2, 1), 0.5, 0.0),
+    ]
+    pieces = [segment((0, 0), (s, s), 0.0, s)] + half + [(p[:, ::-1].copy(), r) for p, r in half]
+    res, _, _ = check_against(F.place(F.l_shape(2.0, 1.0), pl), pl, ClosedForm(pieces))
+    assert kinds(res) == Counter({BP: 3, CV: 5})
+    assert len(res.branches) == 7
+    assert cycle_rank(res) == (1, 0)
+    # the branch near the reflex vertex: equidistant from v and the opposite edge
+    pts, radius = sample(res, 80)
+    loc = pl.to_local(pts)[:, :2]
+    sel = (loc[:, 0] < 1 - 1e-3) & (loc[:, 1] < 1 - 1e-3) & (loc.sum(axis=1) > 2 * s + 1e-3)
+    assert sel.sum() >= 10
+    p = loc[sel]
+    to_v = np.hypot(p[:, 0] - 1, p[:, 1] - 1)
+    to_edge = np.minimum(p[:, 0], p[:, 1])
+    assert np.abs(to_v - to_edge).max() <= res.tol
+    assert np.abs(radius[sel] - to_edge).max() <= res.tol
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+@pytest.mark.parametrize("n", [3, 5, 6, 8])
+def test_regular_polygon(pl: F.Placement, n: int) -> None:
+    R = 1.0
+    t = 2 * np.pi * np.arange(n) / n
+    cf = ClosedForm(
+        [
+            segment((0, 0), (R * math.cos(a), R * math.sin(a)), R * math.cos(math.pi / n), 0.0)
+            for a in t
+        ]
+    )
+    res, _, _ = check_against(F.place(F.regular_ngon(n, R), pl), pl, cf)
+    assert kinds(res) == Counter({BP: 1, CV: n})
+    (centre,) = res.branch_points
+    assert len(centre.footpoints) == n
+    assert centre.radius == pytest.approx(R * math.cos(math.pi / n), abs=res.tol)
+    assert len(res.branches) == n
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_rounded_rectangle_no_branch_at_tangent_joins(pl: F.Placement) -> None:
+    # the fillets (constant curvature 1/rf) end the corner diagonals at their centres
+    a, b, rf = 2.0, 1.0, 0.4
+    pieces = [segment((-(a - b), 0), (a - b, 0), b, b)]
+    for sx in (1, -1):
+        for sy in (1, -1):
+            pieces.append(segment((sx * (a - b), 0), (sx * (a - rf), sy * (b - rf)), b, rf))
+    res, _, _ = check_against(F.place(F.rounded_rectangle(a, b, rf), pl), pl, ClosedForm(pieces))
+    assert kinds(res) == Counter({BP: 2, CC: 4})
+    assert len(res.branches) == 5
+    for n in res.end_points:
+        assert n.radius == pytest.approx(rf, abs=res.tol)
+    assert cycle_rank(res) == (1, 0)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_full_circle_is_one_node(pl: F.Placement) -> None:
+    # where OCCT's BRepMAT2d crashes: the axis is the centre alone
+    R = 1.5
+    res, _, _ = check_against(
+        F.place(F.circle(R), pl), pl, ClosedForm([(np.zeros((1, 2)), np.array([R]))])
+    )
+    assert len(res.nodes) == 1 and len(res.branches) == 0
+    (centre,) = res.nodes
+    assert centre.kind is CC and centre.radius == pytest.approx(R, abs=res.tol)
+    assert np.linalg.norm(pl.to_local(centre.point[None])[0]) <= res.tol
+    assert cycle_rank(res) == (1, 0)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_notched_square_topology(pl: F.Placement) -> None:
+    # no simple closed form; the oracles decide
+    face = F.place(F.notched_square(), pl)
+    res = compute(face)
+    pts, radius = sample(res, 40)
+    fb = O.FaceBoundary(face)
+    assert O.soundness_2d(fb, pts, res.tol).max() <= 2 * res.tol
+    assert O.radius_error_2d(fb, pts, radius).max() <= 2 * res.tol
+    assert np.nanmax(O.completeness_2d(fb, compound(res), 150)) <= 2 * res.tol
+    assert kinds(res)[CV] == 6 and cycle_rank(res) == (1, 0)
+
+
+# ----------------------------------------------------------------------- tighter tolerance
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_ellipse_tight_tolerance(pl: F.Placement) -> None:
+    face = F.place(F.ellipse(3.0, 1.0), pl)
+    cf = ellipse_cf(3.0, 1.0)
+    _, geo_loose, rad_loose = check_against(face, pl, cf, tol=1e-5)
+    res, geo, rad = check_against(face, pl, cf, tol=1e-8, factor=2.0)
+    assert res.tol == pytest.approx(1e-8 * O.bbox_diagonal(face), rel=1e-6)
+    assert geo <= 2e-8 and rad <= 2e-8
+    print(
+        f"ellipse: 1e-5 -> geo {geo_loose:.1e} rad {rad_loose:.1e}; 1e-8 -> geo {geo:.1e} rad {rad:.1e}"
+    )
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_bspline_blob_tight_tolerance(pl: F.Placement) -> None:
+    face = F.place(F.bspline_blob([1.0, 0.6, 0.9, 0.5, 0.8, 0.7, 0.95]), pl)
+    fb = O.FaceBoundary(face)
+    for rel in (1e-5, 1e-8):
+        res = compute(face, rel * fb.diag)
+        pts, radius = sample(res, 25)
+        snd = O.soundness_2d(fb, pts, res.tol)
+        rad = O.radius_error_2d(fb, pts, radius)
+        cmp_ = O.completeness_2d(fb, compound(res), 100)
+        print(
+            f"blob tol {rel:.0e}: sound {snd.max() / fb.diag:.1e} rad {rad.max() / fb.diag:.1e} compl {np.nanmax(cmp_) / fb.diag:.1e}"
+        )
+        assert snd.max() <= 2 * res.tol and rad.max() <= 2 * res.tol
+        assert np.nanmax(cmp_) <= 2 * res.tol
+        assert cycle_rank(res) == (1, 0)

@@ -1,0 +1,169 @@
+"""The oracles themselves, validated on closed-form medial axes (no medialcad involved)."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pytest
+from OCP.BRep import BRep_Builder
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+from OCP.gp import gp_Pnt
+from OCP.TopoDS import TopoDS_Compound
+
+from tests import faces as F
+from tests import oracles as O
+
+PLACEMENTS = [pytest.param(F.IDENTITY, id="xy"), pytest.param(F.TILTED_FAR, id="tilted_far")]
+
+
+def _segments_compound(segments: list[tuple[np.ndarray, np.ndarray]]) -> TopoDS_Compound:
+    comp = TopoDS_Compound()
+    builder = BRep_Builder()
+    builder.MakeCompound(comp)
+    for a, b in segments:
+        builder.Add(comp, BRepBuilderAPI_MakeEdge(gp_Pnt(*a), gp_Pnt(*b)).Edge())
+    return comp
+
+
+def _rectangle_axis(a: float, b: float, pl: F.Placement) -> list[tuple[np.ndarray, np.ndarray]]:
+    bp = [np.array([a - b, 0.0]), np.array([-(a - b), 0.0])]
+    segs = [(bp[0], bp[1])]
+    for sx in (1, -1):
+        for sy in (1, -1):
+            segs.append((bp[0 if sx > 0 else 1], np.array([sx * a, sy * b])))
+    return [(pl.to_model(p), pl.to_model(q)) for p, q in segs]
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_rectangle_soundness_on_and_off_axis(pl: F.Placement) -> None:
+    a, b = 2.0, 1.0
+    fb = O.FaceBoundary(F.place(F.rectangle(a, b), pl))
+    tol = 1e-5 * fb.diag
+    xs = np.linspace(-(a - b), a - b, 41)
+    t = np.linspace(0.05, 1.0, 20)
+    on = np.vstack(
+        [np.c_[xs, 0 * xs], np.c_[(a - b) + b * t, b * t], np.c_[-(a - b) - b * t, -b * t]]
+    )
+    err = O.soundness_2d(fb, pl.to_model(on), tol)
+    assert err.max() < 1e-9 * fb.diag
+    for delta in (1e-3, 3e-2):
+        off = pl.to_model(np.c_[xs * 0.9, 0 * xs + delta])
+        err = O.soundness_2d(fb, off, tol)
+        assert np.all(err > 0.5 * delta) and np.all(err < 1.5 * delta)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_soundness_special_points(pl: F.Placement) -> None:
+    fb = O.FaceBoundary(F.place(F.rectangle(2.0, 1.0), pl))
+    tol = 1e-5 * fb.diag
+    pts = pl.to_model(np.array([[2.0, 1.0], [-2.0, -1.0], [0.5, 1.0], [3.0, 0.0]]))
+    above = pl.to_model(np.array([[0.0, 0.0, 0.01]]))
+    err = O.soundness_2d(fb, np.vstack([pts, above]), tol)
+    assert err[0] == 0 and err[1] == 0  # convex corners: r = 0 end points
+    assert err[2] > 1.0  # mid-edge boundary point: far from any convex corner
+    assert np.isinf(err[3]) and np.isinf(err[4])  # outside, off the plane
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_ellipse_soundness_closed_form(pl: F.Placement) -> None:
+    a, b = 3.0, 1.0
+    c = (a * a - b * b) / a
+    fb = O.FaceBoundary(F.place(F.ellipse(a, b), pl))
+    tol = 1e-8 * fb.diag
+    xs = np.concatenate([np.linspace(-c, c, 41), [c - 1e-6, c - 1e-3, -c + 1e-4]])
+    err = O.soundness_2d(fb, pl.to_model(np.c_[xs, 0 * xs]), tol)
+    assert err.max() < 0.5 * tol
+    # beyond the curvature-centre end point on the axis: the error is the overshoot
+    err = O.soundness_2d(fb, pl.to_model(np.array([[c + 0.01, 0.0]])), tol)
+    assert err[0] == pytest.approx(0.01, rel=1e-3)
+    # the curvature centre itself, from the vertex
+    q, u = (
+        pl.to_model(np.array([[a, 0.0]]))[0],
+        pl.to_model(np.array([[-1.0, 0.0]]))[0] - pl.translation,
+    )
+    assert fb.medial_depth(q, u) == pytest.approx(b * b / a, abs=1e-8 * fb.diag)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_medial_points_closed_forms(pl: F.Placement) -> None:
+    # annulus: the mid circle
+    ri, ro = 1.0, 2.0
+    fb = O.FaceBoundary(F.place(F.annulus(ri, ro), pl))
+    _, m, r = O.medial_points_2d(fb, 100)
+    loc = pl.to_local(m)
+    assert np.abs(np.hypot(loc[:, 0], loc[:, 1]) - (ri + ro) / 2).max() < 1e-9
+    assert np.abs(r - (ro - ri) / 2).max() < 1e-9 and np.abs(loc[:, 2]).max() < 1e-9
+    # ellipse: the segment |x| <= c with r(x) = b sqrt(1 - x^2/(a^2 - b^2))
+    a, b = 3.0, 1.0
+    fb = O.FaceBoundary(F.place(F.ellipse(a, b), pl))
+    _, m, r = O.medial_points_2d(fb, 200)
+    loc = pl.to_local(m)
+    assert np.abs(loc[:, 1]).max() < 1e-9 and np.abs(loc[:, 0]).max() <= (a * a - b * b) / a + 1e-9
+    assert (
+        np.abs(r - b * np.sqrt(np.clip(1 - loc[:, 0] ** 2 / (a * a - b * b), 0, None))).max() < 1e-8
+    )
+    # L-shape: medial points with x < 1, y < 1 beyond the corner diagonal are on the parabola
+    # equidistant from the reflex vertex (1, 1) and the opposite edge (y = 0 or x = 0)
+    fb = O.FaceBoundary(F.place(F.l_shape(2.0, 1.0), pl))
+    _, m, r = O.medial_points_2d(fb, 400)
+    loc = pl.to_local(m)
+    sel = (
+        (loc[:, 0] < 1) & (loc[:, 1] < 1) & (loc[:, 0] + loc[:, 1] > 2 * (2 - math.sqrt(2)) + 1e-6)
+    )
+    assert sel.sum() > 10
+    p = loc[sel]
+    to_vertex = np.hypot(p[:, 0] - 1, p[:, 1] - 1)
+    to_edge = np.minimum(p[:, 0], p[:, 1])
+    assert np.abs(to_vertex - to_edge).max() < 1e-9
+    assert np.abs(r[sel] - to_edge).max() < 1e-9
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_completeness_and_radius_rectangle(pl: F.Placement) -> None:
+    a, b = 2.0, 1.0
+    face = F.place(F.rectangle(a, b), pl)
+    fb = O.FaceBoundary(face)
+    segs = _rectangle_axis(a, b, pl)
+    err = O.completeness_2d(fb, _segments_compound(segs), 200)
+    assert np.nanmax(err) < 1e-9 * fb.diag
+    assert np.isnan(err).sum() == 0  # parameter midpoints never sit on a corner
+    # a missing diagonal is detected
+    err = O.completeness_2d(fb, _segments_compound(segs[:-1]), 200)
+    assert np.nanmax(err) > 0.1
+    # points instead of a compound: the sampling gap shows
+    dense = np.vstack([p + np.linspace(0, 1, 2001)[:, None] * (q - p) for p, q in segs])
+    err = O.completeness_2d(fb, dense, 200)
+    assert np.nanmax(err) < 2e-3
+    # radius oracle
+    t = np.linspace(0, 1, 11)
+    pts = pl.to_model(np.c_[(a - b) + b * t, b * t])
+    assert O.radius_error_2d(fb, pts, b * (1 - t)).max() < 1e-12 * 1e4
+    assert O.radius_error_2d(fb, pts, b * (1 - t) + 0.1).min() == pytest.approx(0.1)
+
+
+def test_wrappers_and_bbox() -> None:
+    import build123d as bd
+    import cadquery as cq
+
+    wp = cq.Workplane().rect(4, 2).extrude(1).faces(">Z")
+    assert O.bbox_diagonal(wp) == pytest.approx(math.hypot(4, 2))
+    assert O.bbox_diagonal(bd.Rectangle(4, 2).face()) == pytest.approx(math.hypot(4, 2))
+    fb = O.FaceBoundary(bd.Rectangle(4, 2).face())
+    assert O.soundness_2d(fb, [[0.5, 0.0, 0.0]], 1e-5)[0] < 1e-9
+
+
+def test_oracle_speed() -> None:
+    face = F.place(F.bspline_blob([1.0, 0.6, 0.9, 0.5, 0.8, 0.7, 0.95]), F.TILTED_FAR)
+    fb = O.FaceBoundary(face)
+    t0 = time.perf_counter()
+    _, m, r = O.medial_points_2d(fb, 300)
+    t1 = time.perf_counter()
+    err = O.soundness_2d(fb, m, 1e-5 * fb.diag)
+    t2 = time.perf_counter()
+    rad = O.radius_error_2d(fb, m, r)
+    print(f"\n300 medial points {t1 - t0:.2f}s, soundness of 300 points {t2 - t1:.2f}s")
+    # the oracle agrees with itself: its own medial points are sound
+    assert err.max() < 1e-9 * fb.diag and rad.max() < 1e-9 * fb.diag
+    assert t1 - t0 < 2.0 and t2 - t1 < 2.0
