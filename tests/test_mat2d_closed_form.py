@@ -272,6 +272,17 @@ def test_bspline_blob_tight_tolerance(pl: F.Placement) -> None:
     for rel in (1e-5, 1e-8):
         res = compute(face, rel * fb.diag)
         pts, radius = sample(res, 25)
+        # The ray-depth test is ill-conditioned at a curvature-centre end point (the
+        # distance along the normal has second-order contact there, so its bisection
+        # overshoots by ~sqrt(eps)): those points are checked by their distance instead.
+        centres = np.array([n.point for n in res.nodes if n.kind is CC])
+        at_centre = np.zeros(len(pts), dtype=bool)
+        if len(centres):
+            near = np.linalg.norm(pts[:, None, :] - centres[None, :, :], axis=2).min(axis=1)
+            at_centre = near <= res.tol
+        cc_err = O.radius_error_2d(fb, pts[at_centre], radius[at_centre])
+        assert cc_err.size == 0 or cc_err.max() <= res.tol
+        pts, radius = pts[~at_centre], radius[~at_centre]
         snd = O.soundness_2d(fb, pts, res.tol)
         rad = O.radius_error_2d(fb, pts, radius)
         cmp_ = O.completeness_2d(fb, compound(res), 100)
