@@ -452,7 +452,7 @@ def evaluate(
 ) -> MapSamples:
     """The medial map at boundary points given by ``(loop, s)``.
 
-    A disk whose radius is within ``tol / 1000`` of the osculating radius ``1/k(b)`` is
+    A disk whose radius is within ``tol / 20`` of the osculating radius ``1/k(b)`` is
     taken to be the osculating disk (its centre is the centre of curvature). So is a disk
     whose partner is on the own curve closer than ``sqrt(tol / k) / 2``: there the medial point is within ``tol`` of the centre of
     curvature of the nearby curvature maximum, and its equations are ill-conditioned.
@@ -503,7 +503,7 @@ def evaluate(
         best_elem[sl] = np.stack([blk[1] for blk in blocks])[j, r]
         best_param[sl] = np.stack([blk[2] for blk in blocks])[j, r]
 
-    is_self = ~(best < self_bound - 1e-3 * tol)
+    is_self = ~(best < self_bound - 0.05 * tol)
     radius = np.where(is_self, self_bound, best)
     centre = foot + radius[:, None] * normal
     p_elem = np.where(is_self, elem, best_elem)

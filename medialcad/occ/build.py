@@ -51,7 +51,10 @@ def edge_between(curve: Any, v0: TopoDS_Vertex | None, v1: TopoDS_Vertex | None)
         if v0 is None or v1 is None:
             mk = BRepBuilderAPI_MakeEdge(curve)
         else:
-            mk = BRepBuilderAPI_MakeEdge(curve, v0, v1)
+            # explicit parameters: OCC refuses (curve, V, V) for a closed curve otherwise
+            mk = BRepBuilderAPI_MakeEdge(
+                curve, v0, v1, curve.FirstParameter(), curve.LastParameter()
+            )
         if not mk.IsDone():
             raise OCCError(f"building an edge failed (error {mk.Error()})")
         return mk.Edge()
