@@ -116,7 +116,10 @@ def _run(args: argparse.Namespace) -> int:
         for tmp, _ in staged:
             tmp.unlink(missing_ok=True)
         raise
+    umask = os.umask(0)
+    os.umask(umask)
     for tmp, final in staged:
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600 files
         os.replace(tmp, final)
     for r in report["faces"]:
         print(
