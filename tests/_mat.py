@@ -7,7 +7,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import pytest
 from numpy.typing import NDArray
 
 import medialcad
@@ -16,25 +15,15 @@ FloatArray = NDArray[np.float64]
 
 
 def compute(face: Any, tol: float | None = None) -> medialcad.MedialAxis2D:
-    """``medial_axis_2d``; skips (not fails) while the engine is still a stub."""
-    try:
-        return medialcad.medial_axis_2d(face, tol=tol)
-    except NotImplementedError:
-        pytest.skip("medial_axis_2d is not implemented yet")
+    return medialcad.medial_axis_2d(face, tol=tol)
 
 
 def sample(result: medialcad.MedialAxis2D, per_branch: int = 50) -> tuple[FloatArray, FloatArray]:
-    try:
-        return result.sample(per_branch)
-    except NotImplementedError:
-        pytest.skip("MedialAxis2D.sample is not implemented yet")
+    return result.sample(per_branch)
 
 
 def compound(result: medialcad.MedialAxis2D) -> Any:
-    try:
-        return result.to_compound()
-    except NotImplementedError:
-        pytest.skip("MedialAxis2D.to_compound is not implemented yet")
+    return result.to_compound()
 
 
 @dataclass

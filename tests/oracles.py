@@ -155,7 +155,7 @@ class FaceBoundary:
             rounding of the coordinates' magnitude).
         eta: how far the nearest boundary point of ``q + s u`` may drift from ``q`` before
             ``s`` counts as past the medial point when ``dist`` alone cannot tell (see
-            :meth:`_probe`); default ``1e-6`` of the diagonal.
+            :meth:`_probe`); default ``1e-8`` of the diagonal.
     """
 
     def __init__(self, face: Any, eps: float | None = None, eta: float | None = None) -> None:
@@ -178,7 +178,7 @@ class FaceBoundary:
         self._dist = ShapeDistance(comp)
         scale = max(1.0, float(np.abs(self.vertices).max()) if self.vertices else 1.0, self.diag)
         self.eps = eps if eps is not None else 1e-12 * self.diag + 1e-15 * scale
-        self.eta = eta if eta is not None else 1e-6 * self.diag
+        self.eta = eta if eta is not None else 1e-8 * self.diag + 1e-14 * scale
         self.edge_tol = max(BRep_Tool.Tolerance_s(e) for e in self.edges)
         self.class_tol = max(1e-9 * self.diag, self.edge_tol)
         self.curves = [BRepAdaptor_Curve(e) for e in self.edges]

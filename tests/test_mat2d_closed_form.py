@@ -265,9 +265,9 @@ def test_ellipse_tight_tolerance(pl: F.Placement) -> None:
     )
 
 
-@pytest.mark.parametrize("pl", PLACEMENTS)
-def test_bspline_blob_tight_tolerance(pl: F.Placement) -> None:
-    face = F.place(F.bspline_blob([1.0, 0.6, 0.9, 0.5, 0.8, 0.7, 0.95]), pl)
+def test_bspline_blob_tight_tolerance() -> None:
+    # the far, tilted placement only: the engine needs seconds at 1e-8
+    face = F.place(F.bspline_blob([1.0, 0.6, 0.9, 0.5, 0.8, 0.7, 0.95]), F.TILTED_FAR)
     fb = O.FaceBoundary(face)
     for rel in (1e-5, 1e-8):
         res = compute(face, rel * fb.diag)

@@ -98,9 +98,9 @@ def test_fixture_face(path: Path) -> None:
 _PHASES = [Phase.explicit, Phase.reuse, Phase.generate] + (
     [Phase.shrink] if os.environ.get("MEDIALCAD_HYPOTHESIS_SHRINK") else []
 )
-# 8 examples per strategy keep the suite fast; MEDIALCAD_HYPOTHESIS_EXAMPLES=25 (or more) in CI.
+# 6 examples per strategy keep the suite near a minute; MEDIALCAD_HYPOTHESIS_EXAMPLES=25 (or more) in CI.
 HYPO = settings(
-    max_examples=int(os.environ.get("MEDIALCAD_HYPOTHESIS_EXAMPLES", "8")),
+    max_examples=int(os.environ.get("MEDIALCAD_HYPOTHESIS_EXAMPLES", "6")),
     phases=_PHASES,
     derandomize=True,
     deadline=None,
