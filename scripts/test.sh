@@ -6,6 +6,8 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/setup_venv.sh
 
 export MPLBACKEND=Agg
+# random faces per hypothesis strategy (the suite default is 6; more in CI)
+export MEDIALCAD_HYPOTHESIS_EXAMPLES="${MEDIALCAD_HYPOTHESIS_EXAMPLES:-20}"
 
 # Lint only the folders that exist (bench/ may be absent in a fresh clone).
 paths=()

@@ -105,6 +105,7 @@ class _Tracer:
         self.b = boundary
         self.cfg = settings
         self.fit_ok: set[tuple[int, float, float, int]] = set()
+        self.mid_cache: dict[tuple[int, float], tuple[FloatArray, float, bool]] = {}
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
         els = boundary.elements
@@ -136,6 +137,26 @@ class _Tracer:
         same = loop[a] == loop[b]
         d = np.abs(pos[a] - pos[b])
         return np.asarray(same & ((d == 1) | (d == count[loop[a]] - 1)))
+
+    def eval_cached(
+        self, loop: int, s: FloatArray
+    ) -> tuple[FloatArray, FloatArray, NDArray[np.bool_]]:
+        """Centre, radius and self flag at ``s`` on ``loop``, remembering past answers
+        (the fit check asks for the same midpoints again after a refit)."""
+        cache = self.mid_cache
+        keys = [(loop, float(x)) for x in s]
+        todo = [i for i, k in enumerate(keys) if k not in cache]
+        if todo:
+            M = self.eval(np.full(len(todo), loop), s[todo])
+            cen = M.centre
+            for j, i in enumerate(todo):
+                cache[keys[i]] = (cen[j], float(M.radius[j]), bool(M.is_self[j]))
+        vals = [cache[k] for k in keys]
+        return (
+            np.array([v[0] for v in vals]).reshape(-1, 2),
+            np.array([v[1] for v in vals]),
+            np.array([v[2] for v in vals], dtype=bool),
+        )
 
     # -- events --------------------------------------------------------------------
     def _crosses_corner(self, loop: int, s0: FloatArray, ds: FloatArray) -> NDArray[np.bool_]:
@@ -484,14 +505,14 @@ def _missing_fit(tr: _Tracer, S: MapSamples, iv: _Interval, tol: float) -> list[
         return []
     mids = s_ext[:-1][ok] + 0.5 * d[ok]
     ua, ub = u[:-1][ok], u[1:][ok]
-    M = tr.eval(np.full(len(mids), iv.loop), mids)
+    centre, radius, is_self = tr.eval_cached(iv.loop, mids)
     uu = ua[:, None] + (ub - ua)[:, None] * np.linspace(0.0, 1.0, 17)[None, :]
     cur = spline(uu.ravel()).reshape(len(mids), 17, -1)
-    dist = np.linalg.norm(cur[..., :2] - M.centre[:, None, :], axis=2)
+    dist = np.linalg.norm(cur[..., :2] - centre[:, None, :], axis=2)
     j = np.argmin(dist, axis=1)
     r = np.arange(len(mids))
-    bad = (dist[r, j] > 0.5 * tol) | (np.abs(cur[r, j, 2] - M.radius) > 0.5 * tol)
-    bad &= ~M.is_self  # next to a curvature-centre end point: the end point rules there
+    bad = (dist[r, j] > 0.5 * tol) | (np.abs(cur[r, j, 2] - radius) > 0.5 * tol)
+    bad &= ~is_self  # next to a curvature-centre end point: the end point rules there
     if not np.any(bad):
         tr.fit_ok.add(key)
     return [float(x) for x in mids[bad]]
