@@ -8,7 +8,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from medialcad.errors import InputError, SelfIntersectingBoundaryError
+from medialcad.errors import (
+    ComputationError,
+    InputError,
+    MedialCadError,
+    SelfIntersectingBoundaryError,
+)
 from medialcad.frame import Frame
 from medialcad.mat2d.boundary import Boundary, build_boundary
 from medialcad.mat2d.graph import Branch, MedialGraph, Node, NodeKind
@@ -122,7 +127,14 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
     boundary = build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=ANGLE_TOL)
     _check_simple(boundary)
     settings = TraceSettings(tol=tol_abs, spacing=pf.diag / 200.0)
-    graph = trace_medial_graph(boundary, pf.frame, settings)
+    try:
+        graph = trace_medial_graph(boundary, pf.frame, settings)
+    except MedialCadError:
+        raise
+    except (ArithmeticError, ValueError, IndexError, np.linalg.LinAlgError) as err:
+        raise ComputationError(
+            f"medial axis computation failed: {type(err).__name__}: {err}"
+        ) from err
     return MedialAxis2D(graph, pf.face)
 
 

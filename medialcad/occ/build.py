@@ -10,12 +10,12 @@ from OCP.BRep import BRep_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeVertex
 from OCP.Geom import Geom_BSplineCurve
 from OCP.gp import gp_Pnt
-from OCP.Standard import Standard_Failure
 from OCP.TColgp import TColgp_Array1OfPnt
 from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Vertex
 
 from medialcad.errors import OCCError
+from medialcad.occ.io import occ_guard
 
 __all__ = ["bspline_curve", "compound", "edge_between", "vertex"]
 
@@ -35,10 +35,8 @@ def bspline_curve(knots: NDArray[np.float64], poles: NDArray[np.float64], degree
     for i, (k, m) in enumerate(zip(uniq, mults, strict=True), start=1):
         kn.SetValue(i, float(k))
         mu.SetValue(i, int(m))
-    try:
+    with occ_guard("building a B-spline curve"):
         return Geom_BSplineCurve(cp, kn, mu, degree)
-    except Standard_Failure as err:
-        raise OCCError(f"building a B-spline curve failed: {err}") from err
 
 
 def vertex(point: NDArray[np.float64]) -> TopoDS_Vertex:
@@ -47,7 +45,7 @@ def vertex(point: NDArray[np.float64]) -> TopoDS_Vertex:
 
 def edge_between(curve: Any, v0: TopoDS_Vertex | None, v1: TopoDS_Vertex | None) -> Any:
     """An edge on ``curve`` over its whole range, sharing the given end vertices."""
-    try:
+    with occ_guard("building an edge"):
         if v0 is None or v1 is None:
             mk = BRepBuilderAPI_MakeEdge(curve)
         else:
@@ -58,8 +56,6 @@ def edge_between(curve: Any, v0: TopoDS_Vertex | None, v1: TopoDS_Vertex | None)
         if not mk.IsDone():
             raise OCCError(f"building an edge failed (error {mk.Error()})")
         return mk.Edge()
-    except Standard_Failure as err:
-        raise OCCError(f"building an edge failed: {err}") from err
 
 
 def compound(shapes: list[Any]) -> TopoDS_Compound:

@@ -33,7 +33,6 @@ from OCP.GeomAbs import GeomAbs_C2
 from OCP.GeomAPI import GeomAPI
 from OCP.GeomLib import GeomLib_IsPlanarSurface
 from OCP.gp import gp_Ax3, gp_Dir, gp_Pln, gp_Pnt
-from OCP.Standard import Standard_Failure
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
@@ -42,7 +41,6 @@ from medialcad.errors import (
     DegenerateFaceError,
     NonPlanarFaceError,
     NotAFaceError,
-    OCCError,
     OpenWireError,
     SelfIntersectingBoundaryError,
     UnsupportedGeometryError,
@@ -50,6 +48,7 @@ from medialcad.errors import (
 from medialcad.frame import Frame
 from medialcad.mat2d.boundary import EdgePiece
 from medialcad.mat2d.curves import CircleCurve, Curve, EllipseCurve, LineCurve, NurbsCurve
+from medialcad.occ.io import is_occ_exception, occ_guard
 
 __all__ = ["PlanarFace", "planar_face", "to_face"]
 
@@ -166,8 +165,9 @@ def _curve_to_numpy(c: Geom2d_Curve, first: float, last: float, approx_tol: floa
             return _nurbs(
                 Geom2dConvert.CurveToBSplineCurve_s(trimmed), trimmed=True, first=first, last=last
             )
-        except Standard_Failure:
-            pass
+        except Exception as err:  # an OCC failure: fall back to approximation
+            if not is_occ_exception(err):
+                raise
     approx = Geom2dConvert_ApproxCurve(trimmed, approx_tol, GeomAbs_C2, 400, 9)
     if not approx.HasResult():
         raise UnsupportedGeometryError(f"cannot approximate a {type(c).__name__} edge")
@@ -231,7 +231,7 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
     diag = float(np.linalg.norm(hi - lo))
     if diag <= 0:
         raise DegenerateFaceError("the face has zero size")
-    try:
+    with occ_guard("reading the face"):
         surf = BRep_Tool.Surface_s(face)
         checker = GeomLib_IsPlanarSurface(surf, plane_tol if plane_tol else 1e-7 * diag)
         if not checker.IsPlanar():
@@ -275,8 +275,6 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
             if loop:
                 loops.append(loop)
             wexp.Next()
-    except Standard_Failure as err:
-        raise OCCError(f"reading the face failed: {err}") from err
     if not loops:
         raise DegenerateFaceError("the face has no boundary")
     # off-plane check of the boundary (a non-planar wire on a "planar" surface)
