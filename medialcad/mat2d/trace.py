@@ -354,38 +354,53 @@ def _span(a: _Event, b: _Event, length: float) -> tuple[float, float]:
     return a.s_hi, span
 
 
-def _intervals(S: MapSamples, events: list[_Event], L: FloatArray) -> list[_Interval]:
+@dataclass
+class _LoopTable:
+    """Where each loop's intervals start on the loop coordinate (for lookups)."""
+
+    first: int  # index of the loop's first interval in the interval list
+    starts: FloatArray  # loop coordinate where each interval starts (sorted)
+    spans: FloatArray  # extent of each interval
+    closed: bool  # a loop without events: one closed interval
+
+
+def _intervals(
+    S: MapSamples, events: list[_Event], L: FloatArray
+) -> tuple[list[_Interval], dict[int, _LoopTable]]:
+    """Cut every loop at its events; the samples between two events form an interval."""
     out: list[_Interval] = []
+    tables: dict[int, _LoopTable] = {}
     for lp in range(len(L)):
         idx = np.nonzero((S.loop == lp) & ~S.is_self)[0]
         evs = sorted((e for e in events if e.loop == lp), key=lambda e: e.s_lo)
         if not evs:
             if len(idx):
+                tables[lp] = _LoopTable(len(out), np.zeros(1), np.array([L[lp]]), True)
                 out.append(_Interval(lp, None, None, idx[np.argsort(S.s[idx])]))
             continue
-        for a, b in zip(evs, evs[1:] + evs[:1], strict=True):
-            start, span = _span(a, b, L[lp])
-            off = (S.s[idx] - start) % L[lp]
-            sel = idx[off <= span]
-            out.append(_Interval(lp, a, b, sel[np.argsort(off[off <= span])]))
-    return out
+        pairs = list(zip(evs, evs[1:] + evs[:1], strict=True))
+        starts = np.array([a.s_hi for a, _ in pairs])
+        spans = np.array([_span(a, b, L[lp])[1] for a, b in pairs])
+        tables[lp] = _LoopTable(len(out), starts, spans, False)
+        k, off = _locate(tables[lp], S.s[idx], L[lp])
+        ok = k >= 0
+        idx, k, off = idx[ok], k[ok], off[ok]
+        order = np.lexsort((off, k))
+        idx, k = idx[order], k[order]
+        bounds = np.searchsorted(k, np.arange(len(pairs) + 1))
+        for j, (a, b) in enumerate(pairs):
+            out.append(_Interval(lp, a, b, idx[bounds[j] : bounds[j + 1]]))
+    return out, tables
 
 
-def _find_interval(
-    intervals: list[_Interval], candidates: list[int], s: float, length: float
-) -> int:
-    """Among ``candidates`` (intervals of one loop), the one whose stretch contains ``s``
-    (the most central one)."""
-    best, best_d = -1, -1.0
-    for i in candidates:
-        iv = intervals[i]
-        if iv.start is None or iv.end is None:
-            return i
-        start, span = _span(iv.start, iv.end, length)
-        off = (s - start) % length
-        if off <= span and min(off, span - off) > best_d:
-            best, best_d = i, min(off, span - off)
-    return best
+def _locate(table: _LoopTable, s: FloatArray, length: float) -> tuple[IntArray, FloatArray]:
+    """Interval (index within the loop, or -1 inside an event) and offset of each ``s``."""
+    if table.closed:
+        return np.zeros(len(s), dtype=np.int64), np.mod(s, length)
+    k = np.searchsorted(table.starts, np.mod(s, length), side="right") - 1
+    k = np.where(k < 0, len(table.starts) - 1, k)
+    off = np.mod(s - table.starts[k], length)
+    return np.where(off <= table.spans[k], k, -1), off
 
 
 def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings) -> MedialGraph:
@@ -399,8 +414,8 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
         if not ok:
             raise ComputationError("medial axis events did not converge")
         n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
-        intervals = _intervals(S, events, tr.L)
-        kept = [_thin(S, iv, 1e-2 * tol) for iv in _dedupe(S, intervals, tr.L)]
+        intervals, tables = _intervals(S, events, tr.L)
+        kept = [_thin(S, iv, 1e-2 * tol) for iv in _dedupe(S, intervals, tables, tr.L)]
         add_loop: list[int] = []
         add_s: list[float] = []
         for iv in kept:
@@ -413,12 +428,22 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
     raise ComputationError("the medial axis did not reach the tolerance")
 
 
-def _dedupe(S: MapSamples, intervals: list[_Interval], L: FloatArray) -> list[_Interval]:
+def _dedupe(
+    S: MapSamples, intervals: list[_Interval], tables: dict[int, _LoopTable], L: FloatArray
+) -> list[_Interval]:
     """Keep one of the two sides of every branch (the interval with the lower index)."""
-    by_loop: dict[int, list[int]] = {}
-    for i, iv in enumerate(intervals):
-        by_loop.setdefault(iv.loop, []).append(i)
     kept: list[_Interval] = []
+    mids = np.array(
+        [iv.samples[len(iv.samples) // 2] if len(iv.samples) else -1 for iv in intervals]
+    )
+    twin = np.full(len(intervals), -1, dtype=np.int64)
+    has = np.nonzero(mids >= 0)[0]
+    p_loop, p_s = S.partner_loop[mids[has]], S.partner_s[mids[has]]
+    for lp, table in tables.items():
+        sel = np.nonzero(p_loop == lp)[0]
+        if len(sel):
+            k, _ = _locate(table, p_s[sel], L[lp])
+            twin[has[sel]] = np.where(k >= 0, table.first + k, -1)
     for i, iv in enumerate(intervals):
         if len(iv.samples) == 0:
             # no sample between two distinct nodes: only the lower side keeps it
@@ -426,9 +451,7 @@ def _dedupe(S: MapSamples, intervals: list[_Interval], L: FloatArray) -> list[_I
             if distinct and _lower_side(iv, intervals):
                 kept.append(iv)
             continue
-        mid = iv.samples[len(iv.samples) // 2]
-        lp = int(S.partner_loop[mid])
-        j = _find_interval(intervals, by_loop.get(lp, []), float(S.partner_s[mid]), L[lp])
+        j = twin[i]
         if j < 0 or j == i or i < j:
             kept.append(iv)
     return kept
