@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
@@ -154,16 +153,12 @@ def test_wrappers_and_bbox() -> None:
     assert O.soundness_2d(fb, [[0.5, 0.0, 0.0]], 1e-5)[0] < 1e-9
 
 
-def test_oracle_speed() -> None:
+def test_oracle_is_self_consistent_on_a_blob() -> None:
     face = F.place(F.bspline_blob([1.0, 0.6, 0.9, 0.5, 0.8, 0.7, 0.95]), F.TILTED_FAR)
     fb = O.FaceBoundary(face)
-    t0 = time.perf_counter()
     _, m, r = O.medial_points_2d(fb, 300)
-    t1 = time.perf_counter()
     err = O.soundness_2d(fb, m, 1e-5 * fb.diag)
-    t2 = time.perf_counter()
     rad = O.radius_error_2d(fb, m, r)
-    print(f"\n300 medial points {t1 - t0:.2f}s, soundness of 300 points {t2 - t1:.2f}s")
-    # the oracle agrees with itself: its own medial points are sound
+    # the oracle agrees with itself: its own medial points are sound (no timing here:
+    # speed is measured in bench/, never asserted in unit tests)
     assert err.max() < 1e-9 * fb.diag and rad.max() < 1e-9 * fb.diag
-    assert t1 - t0 < 2.0 and t2 - t1 < 2.0
