@@ -63,6 +63,7 @@ class Candidates:
     loop_offset: FloatArray
     spacing: float  # candidate spacing of general curves
     reflex_end: BoolArray  # (E, 2): the edge's low / high parameter end is a reflex vertex
+    touch: IntArray  # (E, 2): the element met at the edge's low / high parameter end
 
 
 @dataclass(frozen=True)
@@ -180,7 +181,23 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
         loop_offset=offset,
         spacing=spacing,
         reflex_end=_reflex_ends(boundary),
+        touch=_touching(boundary),
     )
+
+
+def _touching(boundary: Boundary) -> IntArray:
+    """For each edge, the element it meets at its low / high parameter end."""
+    els = boundary.elements
+    out = np.full((len(els), 2), -1, dtype=np.int64)
+    for e in els:
+        if e.piece is None:
+            continue
+        same = [x for x in els if x.loop == e.loop]
+        k = same.index(e)
+        before, after = same[k - 1].index, same[(k + 1) % len(same)].index
+        forward = e.piece.t1 > e.piece.t0
+        out[e.index] = (before, after) if forward else (after, before)
+    return out
 
 
 def _reflex_ends(boundary: Boundary) -> BoolArray:
@@ -298,8 +315,10 @@ def _lines_block(
     p_lo = C.line_o + C.line_lo[:, None] * C.line_d
     p_hi = C.line_o + C.line_hi[:, None] * C.line_d
     f_lo, f_hi = _endpoints_f(o, p_lo, p_hi, b, n, tiny)
-    f_lo = np.where(C.reflex_end[C.lines, 0], np.inf, f_lo)
-    f_hi = np.where(C.reflex_end[C.lines, 1], np.inf, f_hi)
+    # an end at a reflex vertex belongs to the vertex; an end at the joint with the
+    # sample's own element is the sample's own curve (a gap there is no partner)
+    f_lo = np.where(C.reflex_end[C.lines, 0] | (C.touch[C.lines, 0] == own[:, None]), np.inf, f_lo)
+    f_hi = np.where(C.reflex_end[C.lines, 1] | (C.touch[C.lines, 1] == own[:, None]), np.inf, f_hi)
     end_val = np.minimum(f_lo, f_hi) * (1 + 1e-12) + pen
     end_par = np.where(f_lo <= f_hi, C.line_lo, C.line_hi)
     val = np.where(inside, rho, end_val)
@@ -331,8 +350,12 @@ def _circles_block(
     p_lo = C.circ_c + C.circ_r[:, None] * (np.cos(ang_lo) * C.circ_x + np.sin(ang_lo) * C.circ_y)
     p_hi = C.circ_c + C.circ_r[:, None] * (np.cos(ang_hi) * C.circ_x + np.sin(ang_hi) * C.circ_y)
     f_lo, f_hi = _endpoints_f(C.circ_c, p_lo, p_hi, b, n, tiny)
-    f_lo = np.where(C.reflex_end[C.circles, 0], np.inf, f_lo)
-    f_hi = np.where(C.reflex_end[C.circles, 1], np.inf, f_hi)
+    f_lo = np.where(
+        C.reflex_end[C.circles, 0] | (C.touch[C.circles, 0] == own[:, None]), np.inf, f_lo
+    )
+    f_hi = np.where(
+        C.reflex_end[C.circles, 1] | (C.touch[C.circles, 1] == own[:, None]), np.inf, f_hi
+    )
     end_val = np.minimum(f_lo, f_hi) * (1 + 1e-12) + pen
     end_par = np.where(f_lo <= f_hi, C.circ_lo, C.circ_hi)
     val = np.where(inside, rho, end_val)
@@ -430,8 +453,10 @@ def _general_block(
         at_end = (np.abs(t - e.piece.t0) < 1e-12 * span) | (np.abs(t - e.piece.t1) < 1e-12 * span)
         fv = np.where(at_end, fv * (1 + 1e-12) + pen, fv)
         lo_t, hi_t = min(e.piece.t0, e.piece.t1), max(e.piece.t0, e.piece.t1)
-        at_reflex = (C.reflex_end[ei, 0] & (np.abs(t - lo_t) < 1e-12 * span)) | (
-            C.reflex_end[ei, 1] & (np.abs(t - hi_t) < 1e-12 * span)
+        end_lo = C.reflex_end[ei, 0] | (C.touch[ei, 0] == own[rr])
+        end_hi = C.reflex_end[ei, 1] | (C.touch[ei, 1] == own[rr])
+        at_reflex = (end_lo & (np.abs(t - lo_t) < 1e-12 * span)) | (
+            end_hi & (np.abs(t - hi_t) < 1e-12 * span)
         )
         fv = np.where(at_reflex, np.inf, fv)
         if np.any(is_own):

@@ -95,6 +95,25 @@ def _initial_samples(boundary: Boundary, spacing: float) -> tuple[IntArray, Floa
     return np.concatenate(loops).astype(np.int64), np.concatenate(ss)
 
 
+def _near_flat_corners(
+    boundary: Boundary, cfg: TraceSettings, loop: IntArray, s: FloatArray
+) -> tuple[IntArray, FloatArray]:
+    """Samples closing in on every nearly flat convex corner: its spoke is fed by a
+    boundary stretch of only ``turn * r / 2`` on each side, far below the spacing."""
+    add_l, add_s = [loop], [s]
+    for c in boundary.corners:
+        if not 0 < c.turn < np.pi / 6:
+            continue
+        # not closer than where the two sides are collinear within coordinate noise
+        lo = max(1e-10 * boundary.diag / c.turn, cfg.eps_s)
+        if lo >= cfg.spacing:
+            continue
+        d = np.geomspace(cfg.spacing, lo, 24)
+        add_s.append(np.concatenate([c.s - d, c.s + d]) % boundary.loop_lengths[c.loop])
+        add_l.append(np.full(2 * len(d), c.loop, dtype=np.int64))
+    return np.concatenate(add_l), np.concatenate(add_s)
+
+
 def _cyc(d: FloatArray, length: FloatArray) -> FloatArray:
     """Wrap a loop-coordinate difference into ``(-L/2, L/2]``."""
     return np.asarray(d - length * np.round(d / length))
@@ -275,7 +294,9 @@ class _Tracer:
         if n < 2:
             return
         crosses = self._crosses_corner(lp, s0, ds)
-        cand = ~self_[idx] & ~self_[nxt] & ~crosses
+        # steps across a convex corner take part in jump detection too: a nearly flat
+        # corner's spoke meets the main axis at a branch point right next to it
+        cand = ~self_[idx] & ~self_[nxt]
         # a jump: the partner moves much faster over this step than over the steps
         # beside it, and keeps doing so as the step is halved
         ratio = gap / np.maximum(ds, 1e-300)
@@ -302,7 +323,7 @@ class _Tracer:
                 (int(S.partner_element[i1]), float(S.partner_param[i1]), S.partner_point[i1]),
             ]
             events.append(_Event(lp, s0[j], s0[j] + ds[j], NodeKind.BRANCH_POINT, c, r, feet))
-        sp = cand & ~jump & (d0 > 0) & (d1 < 0) & (d0 - d1 <= 3 * ds + cfg.tol)
+        sp = cand & ~crosses & ~jump & (d0 > 0) & (d1 < 0) & (d0 - d1 <= 3 * ds + cfg.tol)
         for j in np.nonzero(sp)[0]:
             c, r, p, ei, t = self._sp_node(lp, s0[j], s0[j] + ds[j])
             events.append(
@@ -407,15 +428,22 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
     """Compute the medial graph of the boundary (see module docstring)."""
     tr = _Tracer(boundary, settings)
     loop, s = _initial_samples(boundary, settings.spacing)
+    loop, s = _near_flat_corners(boundary, settings, loop, s)
     S = tr.eval(loop, s)
     tol = settings.tol
     for _ in range(settings.max_fit_rounds):
         S, events, ok = tr.resolve(S)
         if not ok:
             raise ComputationError("medial axis events did not converge")
-        n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
         intervals, tables = _intervals(S, events, tr.L)
-        kept = [_thin(S, iv, 1e-2 * tol) for iv in _dedupe(S, intervals, tables, tr.L)]
+        twin = _twins(S, intervals, tables, tr.L)
+        flat = _unresolved_corners(intervals, twin)
+        if flat:
+            events = [e for e in events if all(e is not f for f in flat)]
+            intervals, tables = _intervals(S, events, tr.L)
+            twin = _twins(S, intervals, tables, tr.L)
+        n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
+        kept = [_thin(S, iv, 1e-2 * tol) for iv in _dedupe(intervals, twin)]
         add_loop: list[int] = []
         add_s: list[float] = []
         for iv in kept:
@@ -428,11 +456,10 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
     raise ComputationError("the medial axis did not reach the tolerance")
 
 
-def _dedupe(
+def _twins(
     S: MapSamples, intervals: list[_Interval], tables: dict[int, _LoopTable], L: FloatArray
-) -> list[_Interval]:
-    """Keep one of the two sides of every branch (the interval with the lower index)."""
-    kept: list[_Interval] = []
+) -> IntArray:
+    """For each interval, the interval its middle sample's partner lies in (-1: none)."""
     mids = np.array(
         [iv.samples[len(iv.samples) // 2] if len(iv.samples) else -1 for iv in intervals]
     )
@@ -444,6 +471,25 @@ def _dedupe(
         if len(sel):
             k, _ = _locate(table, p_s[sel], L[lp])
             twin[has[sel]] = np.where(k >= 0, table.first + k, -1)
+    return twin
+
+
+def _unresolved_corners(intervals: list[_Interval], twin: IntArray) -> list[_Event]:
+    """Convex corners whose two sides map into one partner interval: the corner is so
+    flat that its spoke's branch point is below the tolerance; it is a smooth join."""
+    out = []
+    for i, iv in enumerate(intervals):
+        if iv.end is None or iv.end.kind is not NodeKind.CONVEX_VERTEX:
+            continue
+        j = next((k for k, other in enumerate(intervals) if other.start is iv.end), -1)
+        if j >= 0 and twin[i] >= 0 and twin[i] == twin[j]:
+            out.append(iv.end)
+    return out
+
+
+def _dedupe(intervals: list[_Interval], twin: IntArray) -> list[_Interval]:
+    """Keep one of the two sides of every branch (the interval with the lower index)."""
+    kept: list[_Interval] = []
     for i, iv in enumerate(intervals):
         if len(iv.samples) == 0:
             # no sample between two distinct nodes: only the lower side keeps it

@@ -33,7 +33,7 @@ from OCP.GeomAbs import GeomAbs_C2
 from OCP.GeomAPI import GeomAPI
 from OCP.GeomLib import GeomLib_IsPlanarSurface
 from OCP.gp import gp_Ax3, gp_Dir, gp_Pln, gp_Pnt
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_VERTEX, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
@@ -266,6 +266,8 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
                     if c3 is None:
                         raise UnsupportedGeometryError("an edge has no 3D curve")
                     c2 = GeomAPI.To2d_s(c3, local)
+                    if c2 is None:
+                        raise UnsupportedGeometryError("an edge cannot be mapped to the plane")
                     curve = _curve_to_numpy(c2, first, last, 1e-9 * diag)
                     forward = it.Orientation() != TopAbs_REVERSED
                     t0, t1 = (first, last) if forward else (last, first)
@@ -278,4 +280,9 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
     if not loops:
         raise DegenerateFaceError("the face has no boundary")
     # off-plane check of the boundary (a non-planar wire on a "planar" surface)
+    # gaps between edges are covered by vertex tolerances (STEP imports: up to ~1e-4)
+    vexp = TopExp_Explorer(face, TopAbs_VERTEX)
+    while vexp.More():
+        gap_tol = max(gap_tol, BRep_Tool.Tolerance_s(TopoDS.Vertex_s(vexp.Current())))
+        vexp.Next()
     return PlanarFace(face, frame, loops, edges, diag, max(gap_tol * 4, 1e-7 * diag))
