@@ -120,18 +120,23 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
     from medialcad.mat2d.trace import TraceSettings, trace_medial_graph
     from medialcad.occ.face2d import planar_face
 
-    pf = planar_face(face)
-    tol_abs = float(tol) if tol is not None else 1e-5 * pf.diag
-    if not np.isfinite(tol_abs) or tol_abs <= 0:
-        raise InputError(f"tol must be a positive number, got {tol!r}")
-    boundary = build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=ANGLE_TOL)
-    _check_simple(boundary)
-    settings = TraceSettings(tol=tol_abs, spacing=pf.diag / 200.0)
     try:
+        tol_abs = None if tol is None else float(tol)
+    except (TypeError, ValueError) as err:
+        raise InputError(f"tol must be a positive number, got {tol!r}") from err
+    if tol_abs is not None and (not np.isfinite(tol_abs) or tol_abs <= 0):
+        raise InputError(f"tol must be a positive number, got {tol!r}")
+    pf = planar_face(face)
+    if tol_abs is None:
+        tol_abs = 1e-5 * pf.diag
+    try:
+        boundary = build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=ANGLE_TOL)
+        _check_simple(boundary)
+        settings = TraceSettings(tol=tol_abs, spacing=pf.diag / 200.0)
         graph = trace_medial_graph(boundary, pf.frame, settings)
     except MedialCadError:
         raise
-    except (ArithmeticError, ValueError, IndexError, np.linalg.LinAlgError) as err:
+    except (ArithmeticError, ValueError, IndexError, KeyError, TypeError, AssertionError) as err:
         raise ComputationError(
             f"medial axis computation failed: {type(err).__name__}: {err}"
         ) from err
@@ -148,10 +153,16 @@ def _check_simple(boundary: Boundary) -> None:
     from scipy.spatial import cKDTree
 
     a_list, b_list, idx_list = [], [], []
+    sagitta = 1e-7 * boundary.diag
     for e in boundary.elements:
         if e.piece is None:
             continue
-        p = e.piece.curve.point(np.linspace(e.piece.t0, e.piece.t1, 33))
+        # enough points that the chords stay within ``sagitta`` of the curve: thin walls
+        # between arcs must not look like crossings
+        _, _, k = boundary.frame_at(e, np.linspace(e.piece.t0, e.piece.t1, 65))
+        kmax = float(np.abs(k).max())
+        n = int(np.clip(np.ceil(e.length * np.sqrt(kmax / (8 * sagitta))), 2, 20000))
+        p = e.piece.curve.point(np.linspace(e.piece.t0, e.piece.t1, n + 1))
         a_list.append(p[:-1])
         b_list.append(p[1:])
         idx_list.append(np.full(len(p) - 1, e.index))

@@ -143,6 +143,9 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(level=logging.DEBUG if args.debug else logging.WARNING)
     try:
         return _run(args)
+    except KeyboardInterrupt:
+        print("medialcad: interrupted", file=sys.stderr)
+        return 130
     except InputError as err:
         if args.debug:
             raise

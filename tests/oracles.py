@@ -443,7 +443,11 @@ class FaceBoundary:
                 if np.linalg.norm(_xyz(BRep_Tool.Pnt_s(vx)) - v) <= 10 * self.edge_tol:
                     t = BRep_Tool.Parameter_s(vx, e)
                     first = abs(t - c.FirstParameter()) <= abs(t - c.LastParameter())
-                    _, tan = self._tangent(i, c.FirstParameter() if first else c.LastParameter())
+                    t0, t1 = c.FirstParameter(), c.LastParameter()
+                    _, tan = self._tangent(i, t0 if first else t1)
+                    if np.linalg.norm(tan) < 1e-12:  # zero end derivative: limit from inside
+                        step = 1e-7 * (t1 - t0)
+                        _, tan = self._tangent(i, t0 + step if first else t1 - step)
                     dirs.append((1.0 if first else -1.0) * tan / np.linalg.norm(tan))
                 ex.Next()
         if len(dirs) != 2:

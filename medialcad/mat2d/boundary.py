@@ -101,6 +101,16 @@ class Boundary:
             pt, d1, d2 = e.piece.curve.derivs(p)
             sense = 1.0 if e.piece.t1 > e.piece.t0 else -1.0
             speed = np.linalg.norm(d1, axis=1)
+            stalled = speed <= 1e-12 * max(float(speed.max(initial=0.0)), 1e-300)
+            if np.any(stalled):
+                # a degenerate end (repeated pole): take the limit from just inside
+                lo, hi = sorted((e.piece.t0, e.piece.t1))
+                nudge = 1e-7 * (hi - lo)
+                q = np.clip(
+                    p[stalled] + np.where(p[stalled] <= 0.5 * (lo + hi), nudge, -nudge), lo, hi
+                )
+                _, d1[stalled], d2[stalled] = e.piece.curve.derivs(q)
+                speed = np.linalg.norm(d1, axis=1)
             tan = sense * d1 / speed[:, None]
             nrm = np.column_stack([-tan[:, 1], tan[:, 0]])
             k = sense * (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / speed**3
@@ -124,6 +134,11 @@ def _loop_polyline(loop: list[EdgePiece], n: int = 64) -> FloatArray:
 def _tangent(piece: EdgePiece, at_end: bool) -> FloatArray:
     t = piece.t1 if at_end else piece.t0
     _, d1, _ = piece.curve.derivs([t])
+    if np.linalg.norm(d1[0]) <= 1e-12 * max(abs(piece.t1 - piece.t0), 1e-300):
+        # a degenerate end (repeated pole): the limit tangent from just inside
+        _, d1, _ = piece.curve.derivs(
+            [t + 1e-7 * (piece.t0 - piece.t1 if at_end else piece.t1 - piece.t0)]
+        )
     v = d1[0] * (1.0 if piece.t1 > piece.t0 else -1.0)
     return np.asarray(v / np.linalg.norm(v))
 

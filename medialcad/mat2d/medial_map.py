@@ -106,7 +106,7 @@ def _edge_params(e: Element, spacing: float) -> FloatArray:
     probe = np.linspace(p.t0, p.t1, 65)
     _, d1, d2 = p.curve.derivs(probe)
     speed = np.linalg.norm(d1, axis=1)
-    turn = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / np.maximum(speed, 1e-300) ** 2
+    turn = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / np.maximum(speed**2, 1e-300)
     total_turn = float(np.mean(turn) * abs(p.t1 - p.t0))
     n = int(
         np.clip(max(np.ceil(e.length / spacing), np.ceil(total_turn / np.radians(4.0))), 8, 4000)

@@ -150,6 +150,20 @@ class _Tracer:
         p, n, k = self.b.frame_at(e, t)
         return p[0], n[0], float(k[0]), e.index, float(t[0])
 
+    def _partner_over_corner(
+        self, S: MapSamples, idx: IntArray, nxt: IntArray, same_loop: NDArray[np.bool_]
+    ) -> NDArray[np.bool_]:
+        out = np.zeros(len(idx), dtype=bool)
+        for plp in np.unique(S.partner_loop[idx]):
+            sel = np.nonzero(same_loop & (S.partner_loop[idx] == plp))[0]
+            if len(sel) == 0:
+                continue
+            p0, p1 = S.partner_s[idx[sel]], S.partner_s[nxt[sel]]
+            d = _cyc(p1 - p0, self.L[plp])
+            start = np.where(d < 0, p1, p0)
+            out[sel] = self._crosses_corner(int(plp), start, np.abs(d))
+        return out
+
     def _adjacent(self, a: IntArray, b: IntArray) -> NDArray[np.bool_]:
         """Whether elements ``a`` and ``b`` follow each other on their loop."""
         pos, count, loop = self.elem_pos, self.loop_count, self.elem_loop
@@ -305,6 +319,10 @@ class _Tracer:
         beside = np.where(np.isfinite(beside), beside, 0.0)
         pe0, pe1 = S.partner_element[idx], S.partner_element[nxt]
         apart = (pe0 != pe1) & ~self._adjacent(pe0, pe1)
+        # a partner never rests on a convex corner: stepping over one is a jump (the
+        # corner's spoke meets the axis there), however small the step
+        # (a step that itself crosses a convex corner has partners on both sides of it)
+        apart |= self._partner_over_corner(S, idx, nxt, same_loop) & ~crosses
         jump = cand & (gap > cfg.tol) & ((ratio > 3.0 * beside + 1.0) | apart)
         split = jump & (ds > cfg.eps_s)
         # split suspicious steps in eight: fewer rounds of (overhead-bound) evaluation

@@ -1,0 +1,91 @@
+"""Degenerate geometry real files contain: nearly flat corners, thin walls between arcs,
+B-spline ends with a zero derivative, bad tolerances. Each is checked by the oracles."""
+
+from __future__ import annotations
+
+import itertools
+from collections import Counter
+from typing import Any
+
+import cadquery as cq
+import numpy as np
+import pytest
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+from OCP.Geom import Geom_BezierCurve
+from OCP.gp import gp_Pnt
+from OCP.TColgp import TColgp_Array1OfPnt
+
+import medialcad
+from tests import oracles as O
+from tests._mat import compound, cycle_rank
+
+BP, CV = medialcad.NodeKind.BRANCH_POINT, medialcad.NodeKind.CONVEX_VERTEX
+
+
+def _poly(pts: list[tuple[float, float]]) -> Any:
+    return cq.Workplane().polyline(pts).close().extrude(1).faces("<Z").val()
+
+
+def _degrees(mat: medialcad.MedialAxis2D) -> Counter[int]:
+    deg: Counter[int] = Counter()
+    for b in mat.branches:
+        if b.start is not None and b.end is not None:
+            deg[b.start] += 1
+            deg[b.end] += 1
+    return deg
+
+
+def _check_oracles(face: Any, mat: medialcad.MedialAxis2D) -> None:
+    fb = O.FaceBoundary(face)
+    pts, _ = mat.sample(20)
+    assert O.soundness_2d(fb, pts, mat.tol).max() <= 2 * mat.tol
+    assert np.nanmax(O.completeness_2d(fb, compound(mat), 120)) <= 2 * mat.tol
+
+
+@pytest.mark.parametrize("kink", [1e-5, 1e-4, 1e-2])
+def test_nearly_flat_convex_corner(kink: float) -> None:
+    """A 10 x 2 plate whose top edge bends by ``kink`` rad at x = 5. A corner whose spoke
+    meets the main axis measurably gets its spoke and branch point; below the tolerance
+    the join is smooth. Never an isolated node, never a disconnected graph."""
+    h = 5 * np.tan(kink / 2)
+    face = _poly([(0, 0), (10, 0), (10, 2), (5, 2 + h), (0, 2)])
+    mat = medialcad.medial_axis_2d(face)
+    deg = _degrees(mat)
+    assert all(deg[n.index] == (1 if n.kind is CV else 3) for n in mat.nodes)
+    assert cycle_rank(mat) == (1, 0)
+    spoke = [n for n in mat.branch_points if abs(n.point[0] - 5) < 1e-6]
+    if kink * 1.0 > 10 * mat.tol:  # the spoke's two footpoints are r * kink apart
+        assert len(spoke) == 1
+        assert spoke[0].radius == pytest.approx(1.0 / np.cos(kink / 2) + h / 2, abs=1e-2)
+    _check_oracles(face, mat)
+
+
+def test_thin_wall_between_circles_with_offset_seams() -> None:
+    outer = cq.Wire.makeCircle(10.02, cq.Vector(0, 0, 0), cq.Vector(0, 0, 1))
+    inner = cq.Wire.makeCircle(10.0, cq.Vector(0, 0, 0), cq.Vector(0, 0, 1)).rotate(
+        cq.Vector(0, 0, 0), cq.Vector(0, 0, 1), 5.6
+    )
+    mat = medialcad.medial_axis_2d(cq.Face.makeFromWires(outer, [inner]))
+    (branch,) = mat.branches
+    assert branch.closed and not mat.nodes
+    assert np.allclose(np.linalg.norm(branch.points_2d, axis=1), 10.01, atol=mat.tol)
+    assert np.allclose(branch.radius, 0.01, atol=mat.tol)
+
+
+def test_bezier_end_with_zero_derivative() -> None:
+    poles = TColgp_Array1OfPnt(1, 4)
+    for i, (x, y) in enumerate([(0, 0), (0, 0), (7, 3), (10, 0)], start=1):
+        poles.SetValue(i, gp_Pnt(x, y, 0))
+    top = cq.Edge(BRepBuilderAPI_MakeEdge(Geom_BezierCurve(poles)).Edge())
+    corners = [cq.Vector(10, 0, 0), cq.Vector(10, -3, 0), cq.Vector(0, -3, 0), cq.Vector(0, 0, 0)]
+    sides = [cq.Edge.makeLine(a, b) for a, b in itertools.pairwise(corners)]
+    face = cq.Face.makeFromWires(cq.Wire.assembleEdges([top, *sides]))
+    mat = medialcad.medial_axis_2d(face)
+    assert cycle_rank(mat) == (1, 0)
+    _check_oracles(face, mat)
+
+
+@pytest.mark.parametrize("tol", [-1.0, 0.0, float("nan"), "fine"])
+def test_bad_tolerance_is_an_input_error(tol: Any) -> None:
+    with pytest.raises(medialcad.InputError, match="tol"):
+        medialcad.medial_axis_2d(_poly([(0, 0), (1, 0), (1, 1)]), tol=tol)
