@@ -86,7 +86,8 @@ class MedialAxis2D:
     def to_compound(self) -> Any:
         """A ``TopoDS_Compound`` of B-spline edges (one per branch) and vertices (isolated
         nodes), in the face's plane in model space."""
-        from medialcad.occ.build import bspline_curve, compound, edge_between, vertex
+        from medialcad.occ.build import bspline_curve, edge_between, vertex
+        from medialcad.occ.shapes import compound
 
         verts = [vertex(n.point) for n in self.nodes]
         used: set[int] = set()

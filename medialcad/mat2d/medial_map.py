@@ -155,6 +155,7 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
             return np.zeros((0, width)) if width else np.zeros(0)
         return np.array([r[i] for r in rows], dtype=float)
 
+    touch = _touching(boundary)
     return Candidates(
         points=np.vstack(pts) if pts else np.zeros((0, 2)),
         element=np.concatenate(elem).astype(i64) if elem else np.zeros(0, dtype=i64),
@@ -180,8 +181,8 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
         elem_key=keys,
         loop_offset=offset,
         spacing=spacing,
-        reflex_end=_reflex_ends(boundary),
-        touch=_touching(boundary),
+        reflex_end=_reflex_ends(boundary, touch),
+        touch=touch,
     )
 
 
@@ -200,21 +201,11 @@ def _touching(boundary: Boundary) -> IntArray:
     return out
 
 
-def _reflex_ends(boundary: Boundary) -> BoolArray:
+def _reflex_ends(boundary: Boundary, touch: IntArray) -> BoolArray:
     """For each edge, whether its low / high parameter end is a reflex vertex (whose
     element owns that point: a minimum of ``f`` clamped there is the vertex's)."""
-    els = boundary.elements
-    out = np.zeros((len(els), 2), dtype=bool)
-    for e in els:
-        if e.piece is None:
-            continue
-        same = [x for x in els if x.loop == e.loop]
-        k = same.index(e)
-        before, after = same[k - 1], same[(k + 1) % len(same)]
-        start, end = before.is_vertex and before is not e, after.is_vertex and after is not e
-        forward = e.piece.t1 > e.piece.t0
-        out[e.index] = (start, end) if forward else (end, start)
-    return out
+    is_vertex = np.array([e.is_vertex for e in boundary.elements] + [False])
+    return np.asarray(is_vertex[touch] & (touch != np.arange(len(touch))[:, None]))
 
 
 def _f_values(q: FloatArray, b: FloatArray, n: FloatArray, tiny: float) -> FloatArray:

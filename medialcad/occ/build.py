@@ -6,18 +6,17 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from OCP.BRep import BRep_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeVertex
 from OCP.Geom import Geom_BSplineCurve
 from OCP.gp import gp_Pnt
 from OCP.TColgp import TColgp_Array1OfPnt
 from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
-from OCP.TopoDS import TopoDS_Compound, TopoDS_Vertex
+from OCP.TopoDS import TopoDS_Vertex
 
 from medialcad.errors import OCCError
 from medialcad.occ.io import occ_guard
 
-__all__ = ["bspline_curve", "compound", "edge_between", "vertex"]
+__all__ = ["bspline_curve", "edge_between", "vertex"]
 
 
 def bspline_curve(knots: NDArray[np.float64], poles: NDArray[np.float64], degree: int) -> Any:
@@ -56,12 +55,3 @@ def edge_between(curve: Any, v0: TopoDS_Vertex | None, v1: TopoDS_Vertex | None)
         if not mk.IsDone():
             raise OCCError(f"building an edge failed (error {mk.Error()})")
         return mk.Edge()
-
-
-def compound(shapes: list[Any]) -> TopoDS_Compound:
-    comp = TopoDS_Compound()
-    builder = BRep_Builder()
-    builder.MakeCompound(comp)
-    for s in shapes:
-        builder.Add(comp, s)
-    return comp
