@@ -93,7 +93,8 @@ def test_fixture_face(path: Path) -> None:
 
 
 # No shrinking by default (a failing engine would spend minutes shrinking); set
-# MEDIALCAD_HYPOTHESIS_SHRINK=1 to get minimal examples. Derandomized: CI sees the same faces.
+# MEDIALCAD_HYPOTHESIS_SHRINK=1 to get minimal examples. Derandomized: CI sees the same faces;
+# MEDIALCAD_HYPOTHESIS_RANDOM=1 draws fresh ones (the longer fuzzing run in the README).
 # Failing faces are written as BREP to $MEDIALCAD_FAILED_FACES (default: no dump).
 _PHASES = [Phase.explicit, Phase.reuse, Phase.generate] + (
     [Phase.shrink] if os.environ.get("MEDIALCAD_HYPOTHESIS_SHRINK") else []
@@ -102,7 +103,7 @@ _PHASES = [Phase.explicit, Phase.reuse, Phase.generate] + (
 HYPO = settings(
     max_examples=int(os.environ.get("MEDIALCAD_HYPOTHESIS_EXAMPLES", "6")),
     phases=_PHASES,
-    derandomize=True,
+    derandomize=not os.environ.get("MEDIALCAD_HYPOTHESIS_RANDOM"),
     deadline=None,
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
 )
