@@ -542,7 +542,10 @@ def evaluate(
         else:
             p_point[sel] = e.piece.curve.point(p_param[sel])
         p_s[sel] = boundary.s_of(e, p_param[sel])
-    own_close = (p_elem == elem) & ~is_self & (np.abs(p_s - s) < near) & np.isfinite(self_bound)
+    loop_len = np.asarray(boundary.loop_lengths)[loop]
+    gap_s = np.abs(p_s - s)
+    gap_s = np.minimum(gap_s, loop_len - gap_s)  # across the seam of a closed curve
+    own_close = (p_elem == elem) & ~is_self & (gap_s < near) & np.isfinite(self_bound)
     is_self = is_self | own_close
     return MapSamples(
         loop=loop,

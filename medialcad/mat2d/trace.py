@@ -436,8 +436,11 @@ def _locate(table: _LoopTable, s: FloatArray, length: float) -> tuple[IntArray, 
     """Interval (index within the loop, or -1 inside an event) and offset of each ``s``."""
     if table.closed:
         return np.zeros(len(s), dtype=np.int64), np.mod(s, length)
-    k = np.searchsorted(table.starts, np.mod(s, length), side="right") - 1
-    k = np.where(k < 0, len(table.starts) - 1, k)
+    # an event spanning the loop's seam starts its interval at a small coordinate:
+    # the starts are cyclically but not numerically ordered
+    order = np.argsort(table.starts, kind="stable")
+    k = np.searchsorted(table.starts[order], np.mod(s, length), side="right") - 1
+    k = order[np.where(k < 0, len(order) - 1, k)]
     off = np.mod(s - table.starts[k], length)
     return np.where(off <= table.spans[k], k, -1), off
 
