@@ -108,3 +108,19 @@ def test_error_hierarchy() -> None:
         DegenerateFaceError,
     ):
         assert issubclass(cls, InputError) and issubclass(InputError, MedialCadError)
+
+
+def test_edge_off_the_plane_is_refused() -> None:
+    """A face whose surface is a plane but one of whose edges leaves it (bad export)."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
+    from OCP.gp import gp_Pln, gp_Pnt
+
+    import medialcad
+
+    poly = BRepBuilderAPI_MakePolygon(
+        gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0), gp_Pnt(10, 5, 0.5), gp_Pnt(0, 5, 0), True
+    )
+    face = BRepBuilderAPI_MakeFace(gp_Pln(), poly.Wire(), True).Face()
+    with pytest.raises((medialcad.NonPlanarFaceError, medialcad.InputError)) as info:
+        medialcad.medial_axis_2d(face)
+    assert "\n" not in str(info.value)

@@ -233,7 +233,9 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
         raise DegenerateFaceError("the face has zero size")
     with occ_guard("reading the face"):
         surf = BRep_Tool.Surface_s(face)
-        checker = GeomLib_IsPlanarSurface(surf, plane_tol if plane_tol else 1e-7 * diag)
+        # STEP planes stored as B-spline surfaces are often flat only to the face tolerance
+        flat_tol = plane_tol if plane_tol else max(1e-7 * diag, 2 * BRep_Tool.Tolerance_s(face))
+        checker = GeomLib_IsPlanarSurface(surf, flat_tol)
         if not checker.IsPlanar():
             raise NonPlanarFaceError(
                 f"the face is not planar (its surface is a {type(surf).__name__})"
@@ -265,6 +267,14 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
                     c3 = BRep_Tool.Curve_s(edge, 0.0, 0.0)
                     if c3 is None:
                         raise UnsupportedGeometryError("an edge has no 3D curve")
+                    probe = np.array(
+                        [_vec(c3.Value(t)) for t in np.linspace(first, last, 9)], dtype=float
+                    )
+                    off = float(np.abs(frame.height(probe)).max())
+                    if off > max(10 * flat_tol, 2 * BRep_Tool.Tolerance_s(edge)):
+                        raise NonPlanarFaceError(
+                            f"edge {len(edges)} leaves the face's plane by {off:.3g}"
+                        )
                     c2 = GeomAPI.To2d_s(c3, local)
                     if c2 is None:
                         raise UnsupportedGeometryError("an edge cannot be mapped to the plane")
