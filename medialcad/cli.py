@@ -108,19 +108,22 @@ def _run(args: argparse.Namespace) -> int:
             tmp_rep = _stage(rep)
             staged.append((tmp_rep, rep))
             tmp_rep.write_text(json.dumps(report, indent=2))
+        tmp_out = _stage(out)
+        staged.append((tmp_out, out))
         if fmt == "brep":
-            write_brep(compound(comps), out)
+            write_brep(compound(comps), tmp_out)
         else:
-            write_step(comps, out, {i: f"medial-axis-face-{i}" for i in range(len(comps))})
+            write_step(comps, tmp_out, {i: f"medial-axis-face-{i}" for i in range(len(comps))})
+        # everything is written: move it all into place (same directories, so renames)
+        umask = os.umask(0)
+        os.umask(umask)
+        for tmp, final in staged:
+            os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600 files
+            os.replace(tmp, final)
     except BaseException:
         for tmp, _ in staged:
             tmp.unlink(missing_ok=True)
         raise
-    umask = os.umask(0)
-    os.umask(umask)
-    for tmp, final in staged:
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600 files
-        os.replace(tmp, final)
     for r in report["faces"]:
         print(
             f"face {r['index']}: {r['branches']} branches, {r['branch_points']} branch points, "
