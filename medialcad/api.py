@@ -154,7 +154,7 @@ def _check_simple(boundary: Boundary) -> None:
     from scipy.spatial import cKDTree
 
     a_list, b_list, idx_list = [], [], []
-    sagitta = 1e-7 * boundary.diag
+    sagitta, chord = 1e-7 * boundary.diag, boundary.diag / 400
     for e in boundary.elements:
         if e.piece is None:
             continue
@@ -162,7 +162,14 @@ def _check_simple(boundary: Boundary) -> None:
         # between arcs must not look like crossings
         _, _, k = boundary.frame_at(e, np.linspace(e.piece.t0, e.piece.t1, 65))
         kmax = float(np.abs(k).max())
-        n = int(np.clip(np.ceil(e.length * np.sqrt(kmax / (8 * sagitta))), 2, 20000))
+        # ... and short enough that the KD-tree's search radius stays local
+        n = int(
+            np.clip(
+                max(np.ceil(e.length * np.sqrt(kmax / (8 * sagitta))), np.ceil(e.length / chord)),
+                2,
+                20000,
+            )
+        )
         p = e.piece.curve.point(np.linspace(e.piece.t0, e.piece.t1, n + 1))
         a_list.append(p[:-1])
         b_list.append(p[1:])

@@ -125,6 +125,9 @@ class _Tracer:
         self.cfg = settings
         self.fit_ok: set[tuple[int, float, float, int]] = set()
         self.mid_cache: dict[tuple[int, float], tuple[FloatArray, float, bool]] = {}
+        self.sp_cache: dict[
+            tuple[int, float, float], tuple[FloatArray, float, FloatArray, int, float]
+        ] = {}
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
         els = boundary.elements
@@ -206,7 +209,16 @@ class _Tracer:
     def _sp_node(
         self, loop: int, s0: float, s1: float
     ) -> tuple[FloatArray, float, FloatArray, int, float]:
-        """The centre of curvature at the curvature maximum in ``[s0, s1]`` (golden section)."""
+        """The centre of curvature at the curvature maximum in ``[s0, s1]`` (golden section;
+        remembered, as every refinement round finds the same end points again)."""
+        key = (loop, float(s0), float(s1))
+        if key not in self.sp_cache:
+            self.sp_cache[key] = self._sp_node_solve(loop, s0, s1)
+        return self.sp_cache[key]
+
+    def _sp_node_solve(
+        self, loop: int, s0: float, s1: float
+    ) -> tuple[FloatArray, float, FloatArray, int, float]:
         length = self.L[loop]
         a, b = s0, s0 + (s1 - s0) % length
         # the samples only bracket the maximum approximately: widen by half the bracket,
