@@ -237,21 +237,17 @@ class _Tracer:
             b = a + 1e-12
         # climb while the curvature still grows past an end: near a flat maximum the
         # self-partner samples need not be centred on it
-        # (a monotone climb in fixed steps: it stays in this maximum's basin)
-        step = 0.5 * (b - a)
-        ka, kb = self.frame_s(loop, a)[2], self.frame_s(loop, b)[2]
-        for _ in range(64):
+        step = b - a
+        for _ in range(40):
+            ka, kb = self.frame_s(loop, a)[2], self.frame_s(loop, b)[2]
             grew = False
-            if a > lim_a:
-                k_new = self.frame_s(loop, max(a - step, lim_a))[2]
-                if k_new > ka:
-                    a, ka, grew = max(a - step, lim_a), k_new, True
-            if b < lim_b:
-                k_new = self.frame_s(loop, min(b + step, lim_b))[2]
-                if k_new > kb:
-                    b, kb, grew = min(b + step, lim_b), k_new, True
+            if a > lim_a and self.frame_s(loop, max(a - step, lim_a))[2] > ka:
+                a, grew = max(a - step, lim_a), True
+            if b < lim_b and self.frame_s(loop, min(b + step, lim_b))[2] > kb:
+                b, grew = min(b + step, lim_b), True
             if not grew:
                 break
+            step *= 2.0
         g = (np.sqrt(5) - 1) / 2
         x1, x2 = b - g * (b - a), a + g * (b - a)
         k1, k2 = self.frame_s(loop, x1)[2], self.frame_s(loop, x2)[2]
