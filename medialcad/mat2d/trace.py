@@ -225,29 +225,15 @@ class _Tracer:
         # staying on the curve that holds it
         pad = 0.5 * (b - a) + 1e-3 * self.cfg.spacing
         e = self.b.element_at(loop, float((0.5 * (a + b)) % length))
-        lim_a, lim_b = -np.inf, np.inf
         if e.piece is not None and e.length < length:
             oa = (a - e.s0) % length
             ob = oa + (b - a)
             if ob <= e.length:
-                lim_a, lim_b = e.s0, e.s0 + e.length
-                a, b = e.s0 + oa, e.s0 + ob
-        a, b = max(a - pad, lim_a), min(b + pad, lim_b)
+                a, b = e.s0 + max(oa - pad, 0.0), e.s0 + min(ob + pad, e.length)
+        else:
+            a, b = a - pad, b + pad
         if b <= a:
             b = a + 1e-12
-        # climb while the curvature still grows past an end: near a flat maximum the
-        # self-partner samples need not be centred on it
-        step = b - a
-        for _ in range(40):
-            ka, kb = self.frame_s(loop, a)[2], self.frame_s(loop, b)[2]
-            grew = False
-            if a > lim_a and self.frame_s(loop, max(a - step, lim_a))[2] > ka:
-                a, grew = max(a - step, lim_a), True
-            if b < lim_b and self.frame_s(loop, min(b + step, lim_b))[2] > kb:
-                b, grew = min(b + step, lim_b), True
-            if not grew:
-                break
-            step *= 2.0
         g = (np.sqrt(5) - 1) / 2
         x1, x2 = b - g * (b - a), a + g * (b - a)
         k1, k2 = self.frame_s(loop, x1)[2], self.frame_s(loop, x2)[2]
