@@ -17,7 +17,7 @@ from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepCheck import BRepCheck_Analyzer, BRepCheck_ListOfStatus, BRepCheck_Status
+from OCP.BRepCheck import BRepCheck_Analyzer, BRepCheck_ListOfStatus
 from OCP.BRepTools import BRepTools_WireExplorer
 from OCP.Geom2d import (
     Geom2d_BSplineCurve,
@@ -33,12 +33,13 @@ from OCP.GeomAbs import GeomAbs_C2
 from OCP.GeomAPI import GeomAPI
 from OCP.GeomLib import GeomLib_IsPlanarSurface
 from OCP.gp import gp_Ax3, gp_Dir, gp_Pln, gp_Pnt
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_VERTEX, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_REVERSED, TopAbs_VERTEX, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
 from medialcad.errors import (
     DegenerateFaceError,
+    InputError,
     NonPlanarFaceError,
     NotAFaceError,
     OpenWireError,
@@ -49,8 +50,9 @@ from medialcad.frame import Frame
 from medialcad.mat2d.boundary import EdgePiece
 from medialcad.mat2d.curves import CircleCurve, Curve, EllipseCurve, LineCurve, NurbsCurve
 from medialcad.occ.io import is_occ_exception, occ_guard
+from medialcad.occ.shapes import single_face
 
-__all__ = ["PlanarFace", "planar_face", "to_face"]
+__all__ = ["PlanarFace", "planar_face"]
 
 
 @dataclass(frozen=True)
@@ -61,31 +63,6 @@ class PlanarFace:
     edges: list[Any]  # TopoDS_Edge per edge_index
     diag: float
     gap_tol: float
-
-
-def to_face(obj: Any) -> TopoDS_Face:
-    """Accept a TopoDS_Face, a cadquery/build123d Face, or a Workplane holding one face."""
-    if obj is None or isinstance(obj, (str, bytes, int, float)):
-        raise NotAFaceError(f"expected a planar face, got {type(obj).__name__}")
-    if hasattr(obj, "vals") and callable(obj.vals):  # cadquery Workplane
-        vals = obj.vals()
-        if len(vals) != 1:
-            raise NotAFaceError(f"expected a Workplane holding one face, it holds {len(vals)}")
-        obj = vals[0]
-    shape = getattr(obj, "wrapped", obj)
-    if not isinstance(shape, TopoDS_Shape) or shape.IsNull():
-        raise NotAFaceError(f"expected a planar face, got {type(obj).__name__}")
-    if shape.ShapeType() == TopAbs_FACE:
-        return TopoDS.Face_s(shape)
-    faces = []
-    exp = TopExp_Explorer(shape, TopAbs_FACE)
-    while exp.More():
-        faces.append(TopoDS.Face_s(exp.Current()))
-        exp.Next()
-    if len(faces) == 1:
-        return faces[0]
-    kind = str(shape.ShapeType()).split("_")[-1].lower()
-    raise NotAFaceError(f"expected one planar face, got a {kind} with {len(faces)} faces")
 
 
 def _bbox(shape: TopoDS_Shape) -> tuple[np.ndarray, np.ndarray]:
@@ -123,7 +100,7 @@ def _check_valid(face: TopoDS_Face) -> None:
         raise SelfIntersectingBoundaryError("the boundary of the face intersects itself")
     if "NotClosed" in text or "Disconnected" in text:
         raise OpenWireError("a boundary loop of the face is not closed")
-    _ = BRepCheck_Status  # statuses other than these are tolerated (checked geometrically later)
+    # other statuses are tolerated: the boundary is checked geometrically later
 
 
 def _curve_to_numpy(c: Geom2d_Curve, first: float, last: float, approx_tol: float) -> Curve:
@@ -226,7 +203,12 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
         NotAFaceError, NonPlanarFaceError, OpenWireError, SelfIntersectingBoundaryError,
         DegenerateFaceError, UnsupportedGeometryError: the face cannot be handled.
     """
-    face = to_face(obj)
+    try:
+        face = single_face(obj)
+    except NotAFaceError:
+        raise
+    except InputError as err:  # not a shape at all: still "not a face" to the caller
+        raise NotAFaceError(f"expected a planar face: {err}") from err
     lo, hi = _bbox(face)
     diag = float(np.linalg.norm(hi - lo))
     if diag <= 0:
