@@ -13,13 +13,16 @@ __all__ = [
     "DegenerateFaceError",
     "InputError",
     "MedialCadError",
+    "NoSolidError",
     "NonPlanarFaceError",
+    "NotExtrusionOrRevolutionError",
     "NotAFaceError",
     "OCCError",
     "OpenWireError",
     "ReadError",
     "SelfIntersectingBoundaryError",
     "UnsupportedGeometryError",
+    "UnsupportedSolidError",
 ]
 
 
@@ -57,6 +60,18 @@ class UnsupportedGeometryError(InputError):
 
 class ReadError(InputError):
     """A file could not be read (missing, empty, not STEP/BREP, no usable shape)."""
+
+
+class NoSolidError(InputError):
+    """The input holds no solid (e.g. a STEP file of loose faces)."""
+
+
+class NotExtrusionOrRevolutionError(InputError):
+    """The solid is neither a (right) extrusion nor a revolution; the message says why."""
+
+
+class UnsupportedSolidError(InputError):
+    """The solid is recognised but its medial axis is not supported (e.g. a pie slice)."""
 
 
 class ComputationError(MedialCadError):

@@ -1,0 +1,136 @@
+"""What a solid is: an extrusion or a revolution, with its exact profile and frame.
+
+The descriptions are frozen dataclasses; the B-rep analysis that produces them lives in
+:mod:`medialcad.occ.recognize`.
+
+Canonical frames (THEORY.md):
+
+- extrusion: the profile lies in ``z = 0`` of :attr:`Extrusion.frame` and the solid is
+  ``profile x [0, length]`` along ``frame.zdir`` (= :attr:`Extrusion.direction`);
+- revolution: the profile lies in the half-plane ``x >= 0`` of the frame's ``xy``-plane
+  and the solid is swept by rotating it about ``frame.ydir`` (= the axis direction, right
+  hand) from 0 to :attr:`Revolution.angle`.
+
+A solid that is both (a cylinder, a tube) is reported as an extrusion, with the
+revolution reading in ``alternative``: the extrusion's MAT needs no special handling of
+the axis and its profile is an exact cap face of the solid.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from medialcad.frame import Frame
+
+__all__ = ["Extrusion", "Revolution", "SolidKind", "read_step", "recognize"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Extrusion:
+    """A right extrusion ``profile x [0, length]``.
+
+    Attributes:
+        direction: unit extrusion direction in model space (from the profile's cap to
+            the other one).
+        length: distance between the caps.
+        profile: the exact planar profile face (``TopoDS_Face``) in model space: a cap of
+            the solid, or the cap faces merged when the cap is split.
+        frame: maps canonical coordinates (profile in ``z = 0``, extrusion along ``+z``)
+            to model space.
+        tolerance: the largest deviation from an exact extrusion measured on the B-rep
+            (length units).
+        alternative: the revolution reading of the same solid, if there is one.
+    """
+
+    direction: FloatArray
+    length: float
+    profile: Any
+    frame: Frame
+    tolerance: float
+    alternative: Revolution | None = None
+
+    kind = "extrusion"
+
+
+@dataclass(frozen=True)
+class Revolution:
+    """A solid swept by revolving a planar profile about an axis.
+
+    Attributes:
+        axis_point: a point of the axis (the foot of the solid's centroid on it).
+        axis_direction: unit axis direction; the sweep turns right-handed about it.
+        angle: swept angle in radians, ``2*pi`` for a full revolution.
+        profile: the exact planar profile (``TopoDS_Face``) in model space: the start cap
+            for a partial revolution, a meridian section for a full one.
+        frame: maps canonical coordinates (profile in ``x >= 0`` of the ``xy``-plane,
+            revolved about ``+y``) to model space; ``frame.xdir`` points into the profile's
+            half-plane.
+        touches_axis: an edge of the profile lies on the axis (shafts, pins).
+        tolerance: the largest deviation from an exact revolution measured on the B-rep.
+        alternative: the extrusion reading of the same solid, if there is one.
+    """
+
+    axis_point: FloatArray
+    axis_direction: FloatArray
+    angle: float
+    profile: Any
+    frame: Frame
+    touches_axis: bool
+    tolerance: float
+    alternative: Extrusion | None = None
+
+    kind = "revolution"
+
+    @property
+    def full(self) -> bool:
+        """True for a revolution through 360 degrees."""
+        return bool(abs(self.angle - 2.0 * math.pi) < 1e-12)
+
+
+SolidKind = Extrusion | Revolution
+
+
+def recognize(solid: Any, tol: float | None = None) -> SolidKind:
+    """Recognise an extrusion or a revolution from the B-rep alone.
+
+    Args:
+        solid: a ``TopoDS_Solid`` (or a shape holding exactly one solid), a cadquery
+            ``Workplane``/``Shape`` or a build123d shape.
+        tol: linear tolerance of the tests; default ``max(1e-6 x diagonal, the largest
+            tolerance of the shape's sub-shapes)``.
+
+    Raises:
+        NoSolidError: the input holds no solid.
+        InputError: it holds several solids (use :func:`read_step` / iterate).
+        NotExtrusionOrRevolutionError: the solid is neither; the message says which face
+            breaks each reading.
+    """
+    from medialcad.occ.recognize import recognize_solid
+
+    return recognize_solid(solid, tol)
+
+
+def read_step(path: Any) -> list[Any]:
+    """The solids of a STEP (or BREP) file, in file order, as ``TopoDS_Solid``.
+
+    Raises:
+        ReadError: the file is missing, empty, not STEP/BREP or unreadable.
+        NoSolidError: the file holds no solid (e.g. only faces).
+    """
+    from medialcad.errors import NoSolidError
+    from medialcad.occ.io import read_shapes
+    from medialcad.occ.shapes import solids
+
+    found = []
+    for shape in read_shapes(path):
+        found.extend(solids(shape))
+    if not found:
+        raise NoSolidError(f"{path}: the file holds no solid")
+    return found
