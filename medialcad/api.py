@@ -31,10 +31,12 @@ class MedialAxis2D:
     Attributes:
         graph: the medial graph (nodes, branches, footpoints, splines).
         face: the input face as a ``TopoDS_Face``.
+        boundary: the exact boundary model the graph's element indices refer to.
     """
 
     graph: MedialGraph
     face: Any
+    boundary: Boundary | None = None
 
     @property
     def nodes(self) -> tuple[Node, ...]:
@@ -141,7 +143,7 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
         raise ComputationError(
             f"medial axis computation failed: {type(err).__name__}: {err}"
         ) from err
-    return MedialAxis2D(graph, pf.face)
+    return MedialAxis2D(graph, pf.face, boundary)
 
 
 def _check_simple(boundary: Boundary) -> None:
@@ -191,3 +193,42 @@ def _check_simple(boundary: Boundary) -> None:
     inner = (ti > 1e-6) & (ti < 1 - 1e-6) & (tj > 1e-6) & (tj < 1 - 1e-6)
     if np.any((np.abs(den) > 1e-14 * boundary.diag**2) & inner):
         raise SelfIntersectingBoundaryError("the boundary of the face intersects itself")
+
+
+def medial_axis(solid: Any, tol: float | None = None) -> Any:
+    """The exact 3D medial axis transform of an extrusion or a revolution.
+
+    Args:
+        solid: a ``TopoDS_Solid`` (or a shape holding one solid), a cadquery
+            ``Workplane``/``Shape`` or a build123d shape.
+        tol: geometric tolerance; default ``1e-5`` times the solid's bounding-box diagonal.
+
+    Returns:
+        A :class:`medialcad.mat3d.result.MedialAxis3D`.
+
+    Raises:
+        NoSolidError, NotExtrusionOrRevolutionError, UnsupportedSolidError, InputError:
+            the solid cannot be handled.
+        ComputationError: an internal failure.
+    """
+    import time
+
+    from medialcad.mat3d.solid import medial_axis_of
+
+    t0 = time.perf_counter()
+    tol_abs = _check_tol(tol)
+    from medialcad.recognition import recognize
+
+    reading = recognize(solid)
+    t1 = time.perf_counter()
+    return medial_axis_of(reading, tol_abs, {"recognition": t1 - t0})
+
+
+def _check_tol(tol: float | None) -> float | None:
+    try:
+        tol_abs = None if tol is None else float(tol)
+    except (TypeError, ValueError) as err:
+        raise InputError(f"tol must be a positive number, got {tol!r}") from err
+    if tol_abs is not None and (not np.isfinite(tol_abs) or tol_abs <= 0):
+        raise InputError(f"tol must be a positive number, got {tol!r}")
+    return tol_abs

@@ -47,6 +47,7 @@ class Extrusion:
         tolerance: the largest deviation from an exact extrusion measured on the B-rep
             (length units).
         alternative: the revolution reading of the same solid, if there is one.
+        solid: the ``TopoDS_Solid`` it describes; diag: its bounding-box diagonal.
     """
 
     direction: FloatArray
@@ -55,6 +56,8 @@ class Extrusion:
     frame: Frame
     tolerance: float
     alternative: Revolution | None = None
+    solid: Any = None
+    diag: float = 0.0
 
     kind = "extrusion"
 
@@ -75,6 +78,7 @@ class Revolution:
         touches_axis: an edge of the profile lies on the axis (shafts, pins).
         tolerance: the largest deviation from an exact revolution measured on the B-rep.
         alternative: the extrusion reading of the same solid, if there is one.
+        solid: the ``TopoDS_Solid`` it describes; diag: its bounding-box diagonal.
     """
 
     axis_point: FloatArray
@@ -85,6 +89,8 @@ class Revolution:
     touches_axis: bool
     tolerance: float
     alternative: Extrusion | None = None
+    solid: Any = None
+    diag: float = 0.0
 
     kind = "revolution"
 

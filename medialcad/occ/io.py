@@ -397,3 +397,47 @@ def _atomic_target(target: Path) -> Iterator[Path]:
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
+
+
+def write_step_named(
+    shape: TopoDS_Shape,
+    named: Sequence[tuple[TopoDS_Shape, str]],
+    path: str | os.PathLike[str],
+    *,
+    name: str = "medial_axis",
+    timestamp: str | None = None,
+) -> Path:
+    """Write one shape to STEP with names on its sub-shapes (XCAF sub-shape labels).
+
+    A viewer that reads STEP names (FreeCAD, CAD Assistant) shows ``sheet-1``,
+    ``seam-1``, ... on the faces, edges and vertices given in ``named``.
+    """
+    target = Path(path)
+    with occ_guard(f"writing STEP file {target}"), quiet_messenger():
+        doc = TDocStd_Document(TCollection_ExtendedString("XmlOcaf"))
+        shape_tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+        label = shape_tool.AddShape(shape, False)
+        TDataStd_Name.Set_s(label, TCollection_ExtendedString(name))
+        for sub, sub_name in named:
+            sub_label = shape_tool.AddSubShape(label, sub)
+            if not sub_label.IsNull():
+                TDataStd_Name.Set_s(sub_label, TCollection_ExtendedString(sub_name))
+        writer = STEPCAFControl_Writer()
+        writer.SetNameMode(True)
+        if not writer.Transfer(doc, STEPControl_AsIs):
+            raise OCCError("STEP transfer failed")
+        _check_step_transfer(writer, [shape], target)
+        _set_step_header(writer, name=target.name, timestamp=timestamp)
+        with _atomic_target(target) as tmp:
+            status = writer.Write(str(tmp))
+            if status != IFSelect_RetDone:
+                raise OCCError(f"writing STEP file {target}: OCC returned {status.name}")
+    return target
+
+
+def atomic_text(path: str | os.PathLike[str], text: str) -> Path:
+    """Write a text file atomically (nothing is left behind on failure)."""
+    target = Path(path)
+    with _atomic_target(target) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+    return target

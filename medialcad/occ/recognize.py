@@ -22,7 +22,7 @@ guards against a misread.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -447,11 +447,9 @@ def recognize_solid(obj: Any, tol: float | None = None) -> SolidKind:
     ext = _recognize_extrusion(solid, data, lin_tol, ang_tol, volume, reasons)
     rev = _recognize_revolution(solid, data, lin_tol, ang_tol, volume, diag, reasons)
     if ext is not None:
-        if rev is not None:
-            return Extrusion(ext.direction, ext.length, ext.profile, ext.frame, ext.tolerance, rev)
-        return ext
+        return replace(ext, alternative=rev and replace(rev, solid=solid, diag=diag), solid=solid, diag=diag)
     if rev is not None:
-        return rev
+        return replace(rev, solid=solid, diag=diag)
     raise NotExtrusionOrRevolutionError(
         "the solid is neither an extrusion nor a revolution: " + "; ".join(reasons)
     )
@@ -551,3 +549,8 @@ def _touches_axis(profile: TopoDS_Face, frame: Frame, lin_tol: float) -> bool:
         if float(np.abs(x).max()) < 10 * lin_tol:
             return True
     return False
+
+
+def solid_diagonal(reading: Any) -> float:
+    """Bounding-box diagonal of the solid a reading describes."""
+    return float(reading.diag)

@@ -1,0 +1,108 @@
+"""Turn patch rows into the sewn OCC complex and the named result."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from medialcad.mat3d.extrusion import EndLine, PatchRows
+from medialcad.mat3d.result import Junction, Seam, Sheet
+
+__all__ = ["build_complex"]
+
+FloatArray = NDArray[np.float64]
+
+_LINEAR = np.array([0.0, 0.0, 1.0, 1.0])
+
+
+def build_complex(
+    patches: list[PatchRows],
+    offsets: list[tuple],
+    lines: list[EndLine],
+    junctions: list[tuple[FloatArray, float]],
+    *,
+    diag: float,
+    mid_plane: tuple[FloatArray, FloatArray, FloatArray] | None,
+    mid_radius: float = 0.0,
+    seam_roles: Callable[[tuple], str | None],
+) -> tuple[tuple[Sheet, ...], tuple[Seam, ...], tuple[Seam, ...], tuple[Seam, ...], tuple[Junction, ...], Any]:
+    """Build faces/edges/vertices; return sheets, seams, skeletal edges, rims, junctions
+    and the compound.
+
+    ``seam_roles(key)`` names the role of a row's curve edge (``"seam"``, ``"rim"`` or
+    ``None`` for an unnamed inner curve).
+    """
+    from medialcad.occ.complex import ComplexBuilder, Row
+
+    cb = ComplexBuilder(merge=1e-9 * diag, tol=max(1e-7 * diag, 1e-9))
+    sheets: list[Sheet] = []
+    row_radius: dict[tuple, tuple[FloatArray, int, FloatArray]] = {}
+    for p in patches:
+        bottom = Row(p.bottom.key, p.knots, p.bottom.poles, p.degree)
+        top = Row(p.top.key, p.knots, p.top.poles, p.degree)
+        face = cb.ruled_face(bottom, top)
+        sheets.append(
+            Sheet(f"sheet-{len(sheets) + 1}", face, p.role, p.knots, p.degree, p.bottom.radius, p.top.radius)
+        )
+        for r in (p.bottom, p.top):
+            row_radius.setdefault(r.key, (p.knots, p.degree, r.radius))
+    if mid_plane is not None and offsets:
+        for face in cb.planar_faces(offsets, *mid_plane):
+            sheets.append(
+                Sheet(f"sheet-{len(sheets) + 1}", face, "mid", _LINEAR, 1, np.array([mid_radius] * 2), np.array([mid_radius] * 2))
+            )
+    seams: list[Seam] = []
+    skeletal: list[Seam] = []
+    rims: list[Seam] = []
+    for key, e in cb.curve_edges.items():
+        role = seam_roles(key)
+        if role is None:
+            continue
+        knots, degree, rad = row_radius[key]
+        target = seams if role == "seam" else rims
+        target.append(Seam("", e.edge, role, knots, degree, rad))
+    for ln in lines:
+        v0, v1 = cb.vertex(ln.p0), cb.vertex(ln.p1)
+        if v0 == v1:
+            continue
+        key = (min(v0, v1), max(v0, v1))
+        e = cb.line_edges.get(key) or cb.line_edge(v0, v1)
+        if any(s.edge.IsSame(e.edge) for s in seams + skeletal + rims):
+            continue
+        target = {"seam": seams, "skeletal": skeletal, "rim": rims}[ln.role]
+        target.append(Seam("", e.edge, ln.role, _LINEAR, 1, np.array([ln.radius, ln.radius])))
+    seams = [Seam(f"seam-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(seams)]
+    skeletal = [Seam(f"skeletal-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(skeletal)]
+    rims = [Seam(f"rim-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(rims)]
+    juncs: list[Junction] = []
+    seen: set[int] = set()
+    for p, r in junctions:
+        vi = cb.vertex(p)
+        if vi in seen:
+            continue
+        seen.add(vi)
+        juncs.append(Junction(f"junction-{len(juncs) + 1}", cb.vertices[vi], cb.points[vi], float(r)))
+    extra = [s.edge for s in skeletal if not _in_faces(cb, s.edge)]
+    comp = cb.compound(extra)
+    return tuple(sheets), tuple(seams), tuple(skeletal), tuple(rims), tuple(juncs), comp
+
+
+def _in_faces(cb: Any, edge: Any) -> bool:
+    """Whether ``edge`` bounds a face already (line edges made only for naming do not)."""
+    return any(edge.IsSame(e.edge) for e in cb.line_edges.values()) and _used(cb, edge)
+
+
+def _used(cb: Any, edge: Any) -> bool:
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+
+    for f in cb.faces:
+        ex = TopExp_Explorer(f, TopAbs_EDGE)
+        while ex.More():
+            if ex.Current().IsSame(edge):
+                return True
+            ex.Next()
+    return False

@@ -1,0 +1,147 @@
+"""The 3D MAT of an extrusion ``P x [0, L]`` (THEORY.md Sec. 1), as patch rows.
+
+Per segment of the 2D medial axis (see :mod:`medialcad.mat3d.segments`), with
+``h = L/2``:
+
+- ``r <= h`` (low): the vertical sheet ruled between the bottom seam ``(c, r)`` and the
+  top seam ``(c, L - r)``; on each side a bottom cap sheet ruled between the foot
+  ``(f, 0)`` and the bottom seam, and a top cap sheet between ``(f, L)`` and the top seam.
+- ``r >= h`` (high, only when ``L < 2 Rmax``): on each side the caps are ruled between
+  the foot and the offset point ``(f + h n, h)``; those offset seams bound the planar mid
+  sheet ``z = h``.
+
+Every row is a cubic B-spline interpolating exact samples at the segment's parameters,
+so all rows of a segment share one knot vector and the ruled sheets are exact between
+exact rows. The radius travels with every row (bilinear on the sheets).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.interpolate import make_interp_spline
+
+from medialcad.mat2d.graph import NodeKind
+from medialcad.mat3d.segments import Segment
+
+__all__ = ["PatchRows", "RowData", "extrusion_rows", "interp_rows"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class RowData:
+    """One row: a key (for sharing), 3D poles in model space and radius poles."""
+
+    key: tuple
+    poles: FloatArray
+    radius: FloatArray
+
+
+@dataclass(frozen=True)
+class PatchRows:
+    """A ruled sheet between two rows on the knots ``knots`` (degree ``degree``)."""
+
+    role: str  # vertical, cap, revolved, ...
+    segment: int
+    knots: FloatArray
+    degree: int
+    bottom: RowData
+    top: RowData
+
+
+@dataclass(frozen=True)
+class EndLine:
+    """A line at a segment end that is a named entity (vertical seam, skeletal edge, rim)."""
+
+    role: str  # seam, skeletal, rim
+    p0: FloatArray
+    p1: FloatArray
+    radius: float
+
+
+def interp_rows(w: FloatArray, *values: FloatArray) -> tuple[FloatArray, int, list[FloatArray]]:
+    """Interpolate several sample arrays at the same parameters: common knots, coeffs."""
+    k = int(min(3, len(w) - 1))
+    out = []
+    t: FloatArray | None = None
+    for v in values:
+        sp = make_interp_spline(w, v, k=k)
+        t = np.asarray(sp.t, dtype=float)
+        out.append(np.asarray(sp.c, dtype=float))
+    assert t is not None
+    return t, k, out
+
+
+def extrusion_rows(
+    segments: list[Segment],
+    to_model: Callable[[FloatArray], FloatArray],
+    length: float,
+    high_level: float | None,
+) -> tuple[list[PatchRows], list[tuple], list[EndLine], list[tuple[FloatArray, float]]]:
+    """Patches, offset-seam keys (mid sheet boundary), end lines and junctions.
+
+    ``to_model`` maps ``(n, 3)`` canonical points (profile coordinates, height) to model
+    space. ``high_level`` is ``L/2`` when there is a mid sheet, else ``None``.
+    """
+    L = length
+    patches: list[PatchRows] = []
+    offsets: list[tuple] = []
+    lines: list[EndLine] = []
+    junctions: list[tuple[FloatArray, float]] = []
+    for si, s in enumerate(segments):
+        r = s.radius
+        high = high_level is not None and float(np.median(r)) > high_level
+        if not high:
+            t, k, (cc, fa, fb) = interp_rows(s.w, np.column_stack([s.centre, r]), s.foot_a, s.foot_b)
+            cr = cc[:, 2]
+            zero = np.zeros(len(cr))
+            sb = RowData(("SB", si), to_model(cc), cr)
+            st = RowData(("ST", si), to_model(np.column_stack([cc[:, :2], L - cr])), cr)
+            if not s.single:
+                patches.append(PatchRows("vertical", si, t, k, sb, st))
+            for side, f in (("a", fa), ("b", fb))[: 1 if s.single else 2]:
+                bot = RowData(("F0", si, side), to_model(np.column_stack([f, zero])), zero)
+                top = RowData(("FL", si, side), to_model(np.column_stack([f, np.full(len(cr), L)])), zero)
+                patches.append(PatchRows("cap", si, t, k, bot, sb))
+                patches.append(PatchRows("cap", si, t, k, top, st))
+            for end, i in ((s.start, 0), (s.end, -1)):
+                c, rr = s.centre[i], float(r[i])
+                p0 = to_model(np.array([[c[0], c[1], rr]]))[0]
+                p1 = to_model(np.array([[c[0], c[1], L - rr]]))[0]
+                if end.kind == "node":
+                    if end.node_kind is NodeKind.BRANCH_POINT:
+                        lines.append(EndLine("seam", p0, p1, rr))
+                        junctions.append((p0, rr))
+                        junctions.append((p1, rr))
+                    elif end.node_kind is NodeKind.CURVATURE_CENTRE:
+                        lines.append(EndLine("skeletal", p0, p1, rr))
+                    else:
+                        lines.append(EndLine("rim", p0, p1, 0.0))
+                elif end.kind == "level":
+                    junctions.append((p0, rr))
+        else:
+            assert high_level is not None
+            h = high_level
+            nrm_a = (s.centre - s.foot_a) / np.maximum(r, 1e-300)[:, None]
+            nrm_b = (s.centre - s.foot_b) / np.maximum(r, 1e-300)[:, None]
+            oa = s.foot_a + h * nrm_a
+            ob = s.foot_b + h * nrm_b
+            # at a level end the offset point is the centre itself
+            for i, end in ((0, s.start), (-1, s.end)):
+                if end.kind == "level":
+                    oa[i] = ob[i] = s.centre[i]
+            t, k, (fa, fb, ca, cb) = interp_rows(s.w, s.foot_a, s.foot_b, oa, ob)
+            n = len(fa)
+            zero, hh = np.zeros(n), np.full(n, h)
+            for side, f, o in (("a", fa, ca), ("b", fb, cb))[: 1 if s.single else 2]:
+                orow = RowData(("OFF", si, side), to_model(np.column_stack([o, hh])), hh)
+                bot = RowData(("F0", si, side), to_model(np.column_stack([f, zero])), zero)
+                top = RowData(("FL", si, side), to_model(np.column_stack([f, np.full(n, L)])), zero)
+                patches.append(PatchRows("cap", si, t, k, bot, orow))
+                patches.append(PatchRows("cap", si, t, k, top, orow))
+                offsets.append(orow.key)
+    return patches, offsets, lines, junctions

@@ -1,0 +1,203 @@
+"""The 3D medial axis transform of a solid: named entities with their radius function."""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import BSpline
+
+__all__ = ["Junction", "MedialAxis3D", "Seam", "Sheet"]
+
+FloatArray = NDArray[np.float64]
+
+RADIUS_FORMAT = "medialcad-radius/1"
+
+
+def _bspline(knots: FloatArray, coeffs: FloatArray, degree: int, u: ArrayLike) -> FloatArray:
+    return np.asarray(BSpline(knots, coeffs, degree, extrapolate=True)(np.asarray(u, dtype=float)))
+
+
+@dataclass(frozen=True)
+class Sheet:
+    """A medial sheet (a face, 2 touch points).
+
+    The radius is ``(1 - v) R0(u) + v R1(u)`` with ``R0``/``R1`` B-splines on ``knots``
+    (the face's own ``(u, v)`` parameters); planar mid sheets have a constant radius.
+    """
+
+    name: str
+    face: Any
+    role: str  # vertical, cap, mid, revolved
+    knots: FloatArray
+    degree: int
+    radius0: FloatArray
+    radius1: FloatArray
+
+    def radius(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
+        """Radius at face parameters ``(u, v)``."""
+        if self.role == "mid":
+            return np.full(np.shape(np.asarray(u, dtype=float)), float(self.radius0[0]))
+        vv = np.asarray(v, dtype=float)
+        r0 = _bspline(self.knots, self.radius0, self.degree, u)
+        r1 = _bspline(self.knots, self.radius1, self.degree, u)
+        return np.asarray((1.0 - vv) * r0 + vv * r1)
+
+    def to_json(self) -> dict[str, Any]:
+        if self.role == "mid":
+            return {"type": "constant", "radius": float(self.radius0[0])}
+        return {
+            "type": "ruled",
+            "u_knots": self.knots.tolist(),
+            "degree": self.degree,
+            "radius_v0": self.radius0.tolist(),
+            "radius_v1": self.radius1.tolist(),
+        }
+
+
+@dataclass(frozen=True)
+class Seam:
+    """A curve of the complex: a seam (3 touch points), a skeletal edge or a rim.
+
+    Its radius is a B-spline in the edge's parameter (``[0, 1]``).
+    """
+
+    name: str
+    edge: Any
+    role: str  # seam, skeletal, rim
+    knots: FloatArray
+    degree: int
+    radius_poles: FloatArray
+
+    def radius(self, t: ArrayLike) -> FloatArray:
+        return _bspline(self.knots, self.radius_poles, self.degree, t)
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "type": "bspline",
+            "knots": self.knots.tolist(),
+            "degree": self.degree,
+            "poles": self.radius_poles.tolist(),
+        }
+
+
+@dataclass(frozen=True)
+class Junction:
+    """A junction point (4 or more touch points)."""
+
+    name: str
+    vertex: Any
+    point: FloatArray
+    radius: float
+
+
+@dataclass(frozen=True)
+class MedialAxis3D:
+    """The medial axis transform of an extrusion or a revolution.
+
+    Attributes:
+        kind: ``"extrusion"`` or ``"revolution"``.
+        recognition: the :class:`~medialcad.recognition.Extrusion` or
+            :class:`~medialcad.recognition.Revolution` it was computed from.
+        mat2d: the 2D MAT of the profile.
+        sheets, seams, junctions, skeletal_edges, rims: the named entities.
+        compound: the sewn complex (``TopoDS_Compound``: faces sharing their edges, plus
+            isolated edges/vertices).
+        tol: geometric tolerance.
+        timings: seconds per stage.
+    """
+
+    kind: str
+    recognition: Any
+    mat2d: Any
+    tol: float
+    sheets: tuple[Sheet, ...]
+    seams: tuple[Seam, ...]
+    junctions: tuple[Junction, ...]
+    skeletal_edges: tuple[Seam, ...]
+    rims: tuple[Seam, ...]
+    compound: Any
+    timings: dict[str, float] = field(default_factory=dict)
+
+    def to_compound(self) -> Any:
+        """The complex as one ``TopoDS_Compound``."""
+        return self.compound
+
+    @property
+    def rmax(self) -> float:
+        return float(self.mat2d.rmax)
+
+    def counts(self) -> dict[str, int]:
+        g = self.mat2d
+        return {
+            "branches": len(g.branches),
+            "branch_points": len(g.branch_points),
+            "junctions": len(self.junctions),
+            "seams": len(self.seams),
+            "sheets": len(self.sheets),
+            "skeletal_edges": len(self.skeletal_edges),
+        }
+
+    # -- radius ----------------------------------------------------------------------
+    def radius_at(self, point: ArrayLike) -> float:
+        """Radius of the MAT at (the point of the complex nearest to) ``point``."""
+        from medialcad.occ.query import nearest_entity
+
+        kind, index, params = nearest_entity(self.compound, self._entity_shapes(), point)
+        if kind == "face":
+            return float(self.sheets[index].radius(params[0], params[1]))
+        if kind == "edge":
+            return float(self._curves()[index].radius(params[0]))
+        return float(self.junctions[index].radius)
+
+    def _curves(self) -> tuple[Seam, ...]:
+        return self.seams + self.skeletal_edges + self.rims
+
+    def _entity_shapes(self) -> tuple[list[Any], list[Any], list[Any]]:
+        return (
+            [s.face for s in self.sheets],
+            [c.edge for c in self._curves()],
+            [j.vertex for j in self.junctions],
+        )
+
+    def radius_data(self) -> dict[str, Any]:
+        """The radius function of every named entity (the CLI's sidecar file; README)."""
+        return {
+            "format": RADIUS_FORMAT,
+            "kind": self.kind,
+            "tol": self.tol,
+            "sheets": {s.name: s.to_json() for s in self.sheets},
+            "curves": {c.name: {"role": c.role, **c.to_json()} for c in self._curves()},
+            "junctions": {
+                j.name: {"point": j.point.tolist(), "radius": j.radius} for j in self.junctions
+            },
+        }
+
+    def names(self) -> list[tuple[Any, str]]:
+        """``(shape, name)`` of every named entity."""
+        out: list[tuple[Any, str]] = [(s.face, s.name) for s in self.sheets]
+        out += [(c.edge, c.name) for c in self._curves()]
+        out += [(j.vertex, j.name) for j in self.junctions]
+        return out
+
+    # -- export ----------------------------------------------------------------------
+    def write_step(self, path: str | os.PathLike[str], *, timestamp: str | None = None) -> None:
+        """Write the complex to STEP with its entities named (XCAF labels)."""
+        from medialcad.occ.io import write_step_named
+
+        write_step_named(self.compound, self.names(), path, timestamp=timestamp)
+
+    def write_brep(self, path: str | os.PathLike[str]) -> None:
+        from medialcad.occ.io import write_brep
+
+        write_brep(self.compound, path)
+
+    def write_radius(self, path: str | os.PathLike[str]) -> None:
+        """Write :meth:`radius_data` as JSON (atomically)."""
+        from medialcad.occ.io import atomic_text
+
+        atomic_text(path, json.dumps(self.radius_data(), indent=1))

@@ -1,0 +1,270 @@
+"""Cut the 2D medial branches into segments on which the 3D sheets are single patches.
+
+A segment is a stretch of one branch where each side's footpoint stays on one boundary
+element (an edge or a reflex vertex) and, when a level ``h`` is given, where the radius
+stays on one side of ``h``. Its two ends are exact: a node of the graph (with the node's
+own point, radius and footpoints), the point where a footpoint passes from one element
+to the next (the foot is the joint, the centre on the joint's normal line), a point
+where ``r = h`` (solved on the branch's spline), or the middle of a closed branch.
+
+Pure numpy/scipy: no OCC.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import brentq
+
+from medialcad.mat2d.boundary import Boundary
+from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
+
+__all__ = ["End", "Segment", "split_branches"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class End:
+    """One end of a segment.
+
+    ``kind`` is ``"node"`` (``node`` gives the graph node), ``"transition"`` (a footpoint
+    changes element), ``"level"`` (``r = h``) or ``"split"`` (cut of a closed branch).
+    """
+
+    kind: str
+    node: int | None = None
+    node_kind: NodeKind | None = None
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A piece of a branch, sampled at increasing parameters ``w`` in ``[0, 1]``.
+
+    ``centre``, ``radius``, ``foot_a``, ``foot_b`` are exact samples (2D, face frame);
+    ``element_a``/``element_b`` are the boundary elements of the two sides.
+    """
+
+    branch: int
+    w: FloatArray
+    centre: FloatArray
+    radius: FloatArray
+    foot_a: FloatArray
+    foot_b: FloatArray
+    element_a: int
+    element_b: int
+    start: End
+    end: End
+    single: bool = False  # one-sided: an isolated node (a disk's centre) and its whole loop
+
+
+def _chord(pts: FloatArray) -> FloatArray:
+    d = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    u = np.concatenate([[0.0], np.cumsum(d)])
+    return u / u[-1] if u[-1] > 0 else np.linspace(0.0, 1.0, len(pts))
+
+
+def _foot_on(boundary: Boundary, element: int, c: FloatArray, guess: float) -> FloatArray:
+    """The nearest point to ``c`` on an element (Newton from ``guess``, clamped)."""
+    e = boundary.elements[element]
+    if e.piece is None:
+        assert e.vertex is not None
+        return np.asarray(e.vertex, dtype=float)
+    lo, hi = sorted((e.piece.t0, e.piece.t1))
+    t = float(np.clip(guess, lo, hi))
+    for _ in range(8):
+        p, d1, d2 = (a[0] for a in e.piece.curve.derivs(np.array([t])))
+        g = float((p - c) @ d1)
+        h = float(d1 @ d1 + (p - c) @ d2)
+        if h <= 0:
+            break
+        step = g / h
+        t = float(np.clip(t - step, lo, hi))
+        if abs(step) < 1e-15 * max(1.0, abs(t)):
+            break
+    return np.asarray(e.piece.curve.point(np.array([t]))[0], dtype=float)
+
+
+def _joint(boundary: Boundary, e_from: int, e_to: int) -> tuple[FloatArray, FloatArray]:
+    """Point and inward normal where the boundary passes between two adjacent elements."""
+    a, b = boundary.elements[e_from], boundary.elements[e_to]
+    edge = a if a.piece is not None else b
+    vert = b if edge is a else a
+    if vert.vertex is not None:
+        p = np.asarray(vert.vertex, dtype=float)
+    else:  # two edges meeting tangentially: the end of ``a`` next to ``b``
+        assert a.piece is not None and b.piece is not None
+        ends = [a.piece.t0, a.piece.t1]
+        pts = a.piece.curve.point(np.array(ends))
+        q = b.piece.curve.point(np.array([b.piece.t0, b.piece.t1]))
+        dist = np.linalg.norm(pts[:, None, :] - q[None, :, :], axis=2)
+        i = int(np.unravel_index(np.argmin(dist), dist.shape)[0])
+        p = pts[i]
+    assert edge.piece is not None
+    ends = np.array([edge.piece.t0, edge.piece.t1])
+    pe = edge.piece.curve.point(ends)
+    t_end = ends[int(np.argmin(np.linalg.norm(pe - p, axis=1)))]
+    _, n, _ = boundary.frame_at(edge, np.array([t_end]))
+    return p, n[0]
+
+
+def split_branches(
+    graph: MedialGraph, boundary: Boundary, level: float | None = None
+) -> list[Segment]:
+    """Segments of every branch of ``graph`` (see the module docstring)."""
+    out: list[Segment] = []
+    for b in graph.branches:
+        out.extend(_split(graph, boundary, b, level))
+    used = {n for b in graph.branches for n in (b.start, b.end) if n is not None}
+    for nd in graph.nodes:
+        if nd.index not in used:
+            out.extend(_isolated(graph, boundary, nd.index))
+    return out
+
+
+def _isolated(graph: MedialGraph, boundary: Boundary, node: int) -> list[Segment]:
+    """A disk: its centre sees the whole loop; two one-sided halves of that loop."""
+    nd = graph.nodes[node]
+    loop = graph.elements[nd.footpoints[0].element].loop if nd.footpoints else 0
+    r = nd.radius
+    # angular step whose cubic interpolation stays far inside the tolerance
+    step = min(0.25, (100.0 * graph.tol / max(r, 1e-300)) ** 0.25)
+    feet = []
+    for e in boundary.elements:
+        if e.loop != loop or e.piece is None:
+            continue
+        n = max(4, int(np.ceil(e.length / max(r * step, 1e-300))))
+        t = np.linspace(e.piece.t0, e.piece.t1, n + 1)
+        feet.append(e.piece.curve.point(t)[:-1])
+    f = np.vstack(feet)
+    f = np.vstack([f, f[:1]])
+    half = len(f) // 2
+    segs = []
+    end = End("node", node, nd.kind)
+    for lo, hi in ((0, half), (half, len(f) - 1)):
+        part = f[lo : hi + 1]
+        w = _chord(part)
+        m = len(part)
+        centre = np.broadcast_to(nd.point_2d, (m, 2)).copy()
+        segs.append(
+            Segment(-1, w, centre, np.full(m, r), part, part.copy(), -1, -1, end, end, True)
+        )
+    return segs
+
+
+def _split(
+    graph: MedialGraph, boundary: Boundary, b: Branch, level: float | None
+) -> list[Segment]:
+    pts = b.points_2d
+    u = _chord(pts)
+    sp = b.spline
+    n = len(u)
+    fa, fb = b.foot_a_point.copy(), b.foot_b_point.copy()
+    ea, eb = b.foot_a_element, b.foot_b_element
+    ca, rad = pts.copy(), b.radius.copy()
+
+    # exact ends at nodes
+    for where, node in ((0, b.start), (n - 1, b.end)):
+        if node is None:
+            continue
+        nd = graph.nodes[node]
+        ca[where], rad[where] = nd.point_2d, nd.radius
+        if nd.kind is NodeKind.CONVEX_VERTEX:
+            fa[where] = fb[where] = nd.point_2d
+            continue
+        for feet, els in ((fa, ea), (fb, eb)):
+            cands = [f for f in nd.footpoints if f.element == els[where]] or list(nd.footpoints)
+            best = min(cands, key=lambda f: float(np.linalg.norm(f.point_2d - feet[where])))
+            feet[where] = best.point_2d
+
+    # cut points: (u, kind, centre, radius, foot_a, foot_b)
+    cuts: list[tuple[float, str, FloatArray, float, FloatArray, FloatArray]] = []
+
+    def at(uu: float, r_force: float | None, i: int) -> tuple[FloatArray, float, FloatArray, FloatArray]:
+        v = sp(np.array([uu]))[0]
+        c, r = v[:2], float(v[2]) if r_force is None else r_force
+        w = (uu - u[i]) / max(u[i + 1] - u[i], 1e-300)
+        j = i if w < 0.5 else i + 1
+        ga = _foot_on(boundary, int(ea[j]), c, float(b.foot_a_param[j]))
+        gb = _foot_on(boundary, int(eb[j]), c, float(b.foot_b_param[j]))
+        return c, r, ga, gb
+
+    for i in range(n - 1):
+        for els, feet_side in ((ea, 0), (eb, 1)):
+            if els[i] == els[i + 1]:
+                continue
+            p, nrm = _joint(boundary, int(els[i]), int(els[i + 1]))
+
+            def g(uu: float, p: FloatArray = p, nrm: FloatArray = nrm) -> float:
+                c = sp(np.array([uu]))[0][:2]
+                return float((c[0] - p[0]) * nrm[1] - (c[1] - p[1]) * nrm[0])
+
+            lo, hi = float(u[i]), float(u[i + 1])
+            glo, ghi = g(lo), g(hi)
+            if glo * ghi < 0:
+                us = float(brentq(g, lo, hi, xtol=1e-14))
+            else:
+                us = lo + (hi - lo) * abs(glo) / max(abs(glo) + abs(ghi), 1e-300)
+            c, r, ga, gb = at(us, None, i)
+            if feet_side == 0:
+                ga = p
+            else:
+                gb = p
+            cuts.append((us, "transition", c, r, ga, gb))
+    if level is not None:
+        dense = np.unique(np.concatenate([u, 0.5 * (u[1:] + u[:-1])]))
+        rv = sp(dense)[:, 2] - level
+        rv[0], rv[-1] = rad[0] - level, rad[-1] - level
+        for j in range(len(dense) - 1):
+            if rv[j] * rv[j + 1] < 0:
+                us = float(brentq(lambda x: float(sp(np.array([x]))[0, 2]) - level, dense[j], dense[j + 1], xtol=1e-14))
+                i = int(np.clip(np.searchsorted(u, us) - 1, 0, n - 2))
+                c, r, ga, gb = at(us, level, i)
+                cuts.append((us, "level", c, level, ga, gb))
+    if b.start is None:  # closed: cut in two at the middle sample
+        i = n // 2
+        cuts.append((float(u[i]), "split", ca[i], float(rad[i]), fa[i], fb[i]))
+    cuts.sort(key=lambda x: x[0])
+    # merge cuts closer than a sliver
+    merged: list[tuple[float, str, FloatArray, float, FloatArray, FloatArray]] = []
+    for c in cuts:
+        if merged and c[0] - merged[-1][0] < 1e-9:
+            continue
+        if c[0] < 1e-9 or c[0] > 1 - 1e-9:
+            continue
+        merged.append(c)
+
+    start_end = End("node", b.start, graph.nodes[b.start].kind) if b.start is not None else End("split")
+    stop_end = End("node", b.end, graph.nodes[b.end].kind) if b.end is not None else End("split")
+    bounds = [(0.0, start_end, ca[0], float(rad[0]), fa[0], fb[0])]
+    bounds += [(m[0], End(m[1]), m[2], m[3], m[4], m[5]) for m in merged]
+    bounds += [(1.0, stop_end, ca[-1], float(rad[-1]), fa[-1], fb[-1])]
+
+    segs: list[Segment] = []
+    for (u0, e0, c0, r0, a0, b0), (u1, e1, c1, r1, a1, b1) in zip(bounds[:-1], bounds[1:], strict=True):
+        span = u1 - u0
+        inner = (u > u0 + 1e-9 * 1) & (u < u1 - 1e-9)
+        inner &= (u - u0 > 1e-6 * span) & (u1 - u > 1e-6 * span)
+        idx = np.nonzero(inner)[0]
+        w = np.concatenate([[0.0], (u[idx] - u0) / span, [1.0]])
+        centre = np.vstack([c0[None], ca[idx], c1[None]])
+        radius = np.concatenate([[r0], rad[idx], [r1]])
+        foot_a = np.vstack([a0[None], fa[idx], a1[None]])
+        foot_b = np.vstack([b0[None], fb[idx], b1[None]])
+        um = 0.5 * (u0 + u1)
+        k = int(np.clip(np.searchsorted(u, um) - 1, 0, n - 2))
+        # element of each side on this segment: the one at the segment's middle
+        el_a = int(ea[k] if _side_before(cuts, um, u[k], u[k + 1], ea[k], ea[k + 1]) else ea[k + 1])
+        el_b = int(eb[k] if _side_before(cuts, um, u[k], u[k + 1], eb[k], eb[k + 1]) else eb[k + 1])
+        segs.append(Segment(b.index, w, centre, radius, foot_a, foot_b, el_a, el_b, e0, e1))
+    return segs
+
+
+def _side_before(cuts: list, um: float, ulo: float, uhi: float, e0: int, e1: int) -> bool:
+    """Whether the point ``um`` between two samples lies before that side's transition."""
+    if e0 == e1:
+        return True
+    ts = [c[0] for c in cuts if c[1] == "transition" and ulo <= c[0] <= uhi]
+    return not ts or um < min(ts)

@@ -1,0 +1,83 @@
+"""Orchestration of the 3D MAT: recognition -> 2D MAT of the profile -> lifted complex."""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from medialcad.errors import ComputationError, MedialCadError, UnsupportedSolidError
+from medialcad.mat3d.assemble import build_complex
+from medialcad.mat3d.extrusion import extrusion_rows
+from medialcad.mat3d.result import MedialAxis3D
+from medialcad.mat3d.segments import split_branches
+from medialcad.recognition import Extrusion, Revolution
+
+__all__ = ["medial_axis_of"]
+
+FloatArray = NDArray[np.float64]
+
+
+def _solid_diag(reading: Extrusion | Revolution) -> float:
+    from medialcad.occ.recognize import solid_diagonal
+
+    return solid_diagonal(reading)
+
+
+def medial_axis_of(
+    reading: Extrusion | Revolution, tol: float | None, timings: dict[str, float]
+) -> MedialAxis3D:
+    """The MAT of a recognised solid (see :func:`medialcad.medial_axis`)."""
+    from medialcad.api import medial_axis_2d
+
+    diag = _solid_diag(reading)
+    tol_abs = tol if tol is not None else 1e-5 * diag
+    t0 = time.perf_counter()
+    mat2d = medial_axis_2d(reading.profile, tol=tol_abs)
+    timings["mat2d"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    try:
+        if isinstance(reading, Extrusion):
+            parts = _extrusion(reading, mat2d, diag, tol_abs)
+        else:
+            from medialcad.mat3d.revolution import revolution_parts
+
+            parts = revolution_parts(reading, mat2d, diag, tol_abs)
+    except MedialCadError:
+        raise
+    except (ArithmeticError, ValueError, IndexError, KeyError, TypeError, AssertionError) as err:
+        raise ComputationError(f"3D medial axis failed: {type(err).__name__}: {err}") from err
+    timings["mat3d"] = time.perf_counter() - t0
+    sheets, seams, skeletal, rims, junctions, comp = parts
+    if not sheets and not seams and not skeletal:
+        raise UnsupportedSolidError("the medial axis of this solid came out empty")
+    return MedialAxis3D(
+        reading.kind, reading, mat2d, tol_abs, sheets, seams, junctions, skeletal, rims, comp, timings
+    )
+
+
+def _roles(key: tuple) -> str | None:
+    return {"SB": "seam", "ST": "seam", "OFF": "seam", "F0": "rim", "FL": "rim"}.get(key[0])
+
+
+def _extrusion(reading: Extrusion, mat2d: Any, diag: float, tol: float) -> tuple:
+    L = reading.length
+    d = reading.direction
+    frame = mat2d.frame
+    h = 0.5 * L
+    level = h if mat2d.rmax > h + tol else None
+    segments = split_branches(mat2d.graph, mat2d.boundary, level)
+
+    def to_model(p: FloatArray) -> FloatArray:
+        p = np.asarray(p, dtype=float)
+        return np.asarray(frame.to_3d(p[:, :2]) + p[:, 2:3] * d)
+
+    patches, offsets, lines, junctions = extrusion_rows(segments, to_model, L, level)
+    mid = None
+    if level is not None:
+        mid = (frame.origin + h * d, frame.xdir, frame.ydir)
+    return build_complex(
+        patches, offsets, lines, junctions, diag=diag, mid_plane=mid, mid_radius=h, seam_roles=_roles
+    )

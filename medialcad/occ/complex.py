@@ -1,0 +1,340 @@
+"""Build a sewn, non-manifold B-spline complex with ``BRep_Builder``.
+
+Sheets are built as faces on B-spline surfaces ruled in ``v`` (degree 1) between two
+rows of poles that share one knot vector in ``u``; every boundary side of a face is a
+real shared edge or a degenerated edge:
+
+- *curve edges* (seams, rims, offset seams) are created once per key and carry the row's
+  B-spline with parameter ``u``; every face on that row gets the pcurve ``v = 0`` or
+  ``v = 1`` in the same parameter;
+- *line edges* between two vertices (the rulings at a face's ``u`` ends) are shared by
+  vertex pair, parameter ``[0, 1]``;
+- vertices are merged when they coincide within ``merge`` (they come from the same
+  numbers, so this only absorbs rounding).
+
+Planar faces (mid sheets) are bounded by existing curve edges, wired into loops and
+nested by their 2D polygons.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from OCP.BRep import BRep_Builder
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface, Geom_Plane
+from OCP.Geom2d import Geom2d_Line
+from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pln, gp_Pnt, gp_Pnt2d
+from OCP.TColgp import TColgp_Array1OfPnt, TColgp_Array2OfPnt
+from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
+from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
+from OCP.TopLoc import TopLoc_Location
+from OCP.TopoDS import TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
+
+from medialcad.errors import ComputationError
+from medialcad.occ.io import occ_guard
+
+__all__ = ["ComplexBuilder", "Row"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Row:
+    """A B-spline curve ``u in [0, 1]`` given by clamped ``knots``, ``poles (n, 3)``."""
+
+    key: Hashable
+    knots: FloatArray
+    poles: FloatArray
+    degree: int
+
+
+def _knots_mults(t: FloatArray) -> tuple[TColStd_Array1OfReal, TColStd_Array1OfInteger]:
+    vals, mults = [], []
+    for x in t:
+        if vals and abs(x - vals[-1]) <= 1e-13:
+            mults[-1] += 1
+        else:
+            vals.append(float(x))
+            mults.append(1)
+    k = TColStd_Array1OfReal(1, len(vals))
+    m = TColStd_Array1OfInteger(1, len(vals))
+    for i, (v, mm) in enumerate(zip(vals, mults, strict=True), start=1):
+        k.SetValue(i, v)
+        m.SetValue(i, mm)
+    return k, m
+
+
+def _pnt(p: FloatArray) -> gp_Pnt:
+    return gp_Pnt(float(p[0]), float(p[1]), float(p[2]))
+
+
+def bspline(knots: FloatArray, poles: FloatArray, degree: int) -> Geom_BSplineCurve:
+    arr = TColgp_Array1OfPnt(1, len(poles))
+    for i, p in enumerate(poles, start=1):
+        arr.SetValue(i, _pnt(p))
+    k, m = _knots_mults(knots)
+    return Geom_BSplineCurve(arr, k, m, degree)
+
+
+@dataclass
+class _Edge:
+    edge: TopoDS_Edge
+    v0: int
+    v1: int
+
+
+@dataclass
+class ComplexBuilder:
+    """Accumulates vertices, edges and faces of one complex (see the module docstring)."""
+
+    merge: float
+    tol: float
+    builder: BRep_Builder = field(default_factory=BRep_Builder)
+    points: list[FloatArray] = field(default_factory=list)
+    vertices: list[TopoDS_Vertex] = field(default_factory=list)
+    curve_edges: dict[Hashable, _Edge] = field(default_factory=dict)
+    line_edges: dict[tuple[int, int], _Edge] = field(default_factory=dict)
+    faces: list[TopoDS_Face] = field(default_factory=list)
+    _grid: dict[tuple[int, int, int], list[int]] = field(default_factory=dict)
+
+    # -- vertices ------------------------------------------------------------------
+    def vertex(self, p: FloatArray) -> int:
+        p = np.asarray(p, dtype=float)
+        cell = tuple(int(x) for x in np.floor(p / (4 * self.merge)))
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                for dz in (-1, 0, 1):
+                    for i in self._grid.get((cell[0] + dx, cell[1] + dy, cell[2] + dz), ()):
+                        if np.linalg.norm(self.points[i] - p) <= self.merge:
+                            return i
+        v = TopoDS_Vertex()
+        self.builder.MakeVertex(v, _pnt(p), self.tol)
+        self.points.append(p)
+        self.vertices.append(v)
+        i = len(self.points) - 1
+        self._grid.setdefault(cell, []).append(i)  # type: ignore[arg-type]
+        return i
+
+    # -- edges ---------------------------------------------------------------------
+    def _edge(self, curve: Any, v0: int, v1: int) -> TopoDS_Edge:
+        e = TopoDS_Edge()
+        self.builder.MakeEdge(e, curve, self.tol)
+        self.builder.Add(e, self.vertices[v0].Oriented(TopAbs_FORWARD))
+        self.builder.Add(e, self.vertices[v1].Oriented(TopAbs_REVERSED))
+        self.builder.Range(e, 0.0, 1.0)
+        return e
+
+    def is_degenerate(self, row: Row) -> bool:
+        return bool(np.ptp(row.poles, axis=0).max() <= self.merge)
+
+    def curve_edge(self, row: Row) -> _Edge:
+        got = self.curve_edges.get(row.key)
+        if got is None:
+            v0, v1 = self.vertex(row.poles[0]), self.vertex(row.poles[-1])
+            curve = bspline(row.knots, row.poles, row.degree)
+            got = _Edge(self._edge(curve, v0, v1), v0, v1)
+            self.curve_edges[row.key] = got
+        return got
+
+    def line_edge(self, v0: int, v1: int) -> _Edge:
+        key = (min(v0, v1), max(v0, v1))
+        got = self.line_edges.get(key)
+        if got is None:
+            a, b = self.points[v0], self.points[v1]
+            curve = bspline(np.array([0.0, 0.0, 1.0, 1.0]), np.vstack([a, b]), 1)
+            got = _Edge(self._edge(curve, v0, v1), v0, v1)
+            self.line_edges[key] = got
+        return got
+
+    # -- faces ---------------------------------------------------------------------
+    def ruled_face(self, bottom: Row, top: Row) -> TopoDS_Face:
+        """A face ruled between two rows of equal knots (``v = 0`` bottom, ``v = 1`` top)."""
+        if len(bottom.poles) != len(top.poles) or bottom.degree != top.degree:
+            raise ComputationError("ruled face rows are not compatible")
+        with occ_guard("building a medial sheet"):
+            n = len(bottom.poles)
+            arr = TColgp_Array2OfPnt(1, n, 1, 2)
+            for i in range(n):
+                arr.SetValue(i + 1, 1, _pnt(bottom.poles[i]))
+                arr.SetValue(i + 1, 2, _pnt(top.poles[i]))
+            uk, um = _knots_mults(bottom.knots)
+            vk, vm = _knots_mults(np.array([0.0, 0.0, 1.0, 1.0]))
+            surf = Geom_BSplineSurface(arr, uk, vk, um, vm, bottom.degree, 1)
+            face = TopoDS_Face()
+            self.builder.MakeFace(face, surf, TopLoc_Location(), self.tol)
+            wire = TopoDS_Wire()
+            self.builder.MakeWire(wire)
+            b00 = self.vertex(bottom.poles[0])
+            b10 = self.vertex(bottom.poles[-1])
+            t01 = self.vertex(top.poles[0])
+            t11 = self.vertex(top.poles[-1])
+            # bottom: v = 0, u 0 -> 1
+            self._row_side(wire, face, bottom, 0.0, forward=True, v_from=b00)
+            # right: u = 1, v 0 -> 1
+            self._line_side(wire, face, 1.0, b10, t11)
+            # top: v = 1, u 1 -> 0
+            self._row_side(wire, face, top, 1.0, forward=False, v_from=t11)
+            # left: u = 0, v 1 -> 0
+            self._line_side(wire, face, 0.0, t01, b00)
+            self.builder.Add(face, wire)
+        self.faces.append(face)
+        return face
+
+    def _row_side(
+        self, wire: TopoDS_Wire, face: TopoDS_Face, row: Row, v: float, *, forward: bool, v_from: int
+    ) -> None:
+        if self.is_degenerate(row):
+            d = 1.0 if forward else -1.0
+            start = 0.0 if forward else 1.0
+            pc = Geom2d_Line(gp_Pnt2d(start, v), gp_Dir2d(d, 0.0))
+            self._degenerate(wire, face, pc, v_from)
+            return
+        e = self.curve_edge(row)
+        pc = Geom2d_Line(gp_Pnt2d(0.0, v), gp_Dir2d(1.0, 0.0))
+        self.builder.UpdateEdge(e.edge, pc, face, self.tol)
+        self.builder.Range(e.edge, face, 0.0, 1.0)
+        self.builder.Add(wire, e.edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
+
+    def _line_side(self, wire: TopoDS_Wire, face: TopoDS_Face, u: float, va: int, vb: int) -> None:
+        """The side ``u = const`` traversed from vertex ``va`` to ``vb``."""
+        going_up = u == 1.0  # right side goes v 0 -> 1, left side goes v 1 -> 0
+        if va == vb:
+            d = 1.0 if going_up else -1.0
+            pc = Geom2d_Line(gp_Pnt2d(u, 0.0 if going_up else 1.0), gp_Dir2d(0.0, d))
+            self._degenerate(wire, face, pc, va)
+            return
+        e = self.line_edge(va, vb)
+        # pcurve in the edge's own parameter (from e.v0 to e.v1)
+        same = e.v0 == va
+        v_start = (0.0 if going_up else 1.0) if same else (1.0 if going_up else 0.0)
+        d = (1.0 if going_up else -1.0) * (1.0 if same else -1.0)
+        pc = Geom2d_Line(gp_Pnt2d(u, v_start), gp_Dir2d(0.0, d))
+        self.builder.UpdateEdge(e.edge, pc, face, self.tol)
+        self.builder.Range(e.edge, face, 0.0, 1.0)
+        self.builder.Add(wire, e.edge.Oriented(TopAbs_FORWARD if same else TopAbs_REVERSED))
+
+    def _degenerate(self, wire: TopoDS_Wire, face: TopoDS_Face, pc: Geom2d_Line, v: int) -> None:
+        e = TopoDS_Edge()
+        self.builder.MakeEdge(e)
+        self.builder.UpdateEdge(e, pc, face, self.tol)
+        self.builder.Degenerated(e, True)
+        self.builder.Add(e, self.vertices[v].Oriented(TopAbs_FORWARD))
+        self.builder.Add(e, self.vertices[v].Oriented(TopAbs_REVERSED))
+        self.builder.Range(e, face, 0.0, 1.0)
+        self.builder.Add(wire, e.Oriented(TopAbs_FORWARD))
+
+    def planar_faces(
+        self, keys: list[Hashable], origin: FloatArray, xdir: FloatArray, ydir: FloatArray
+    ) -> list[TopoDS_Face]:
+        """Planar faces bounded by the curve edges ``keys`` (loops found by their vertices).
+
+        The plane is ``origin + x xdir + y ydir``; loops are nested by their 2D polygons.
+        """
+        loops = _loops([(k, self.curve_edges[k]) for k in keys])
+        if not loops:
+            return []
+        polys = []
+        for loop in loops:
+            pts = []
+            for key, fwd in loop:
+                poles = self.curve_edges[key]
+                crv = bspline_points(poles.edge, 24)
+                pts.append(crv if fwd else crv[::-1])
+            p3 = np.vstack(pts)
+            d = p3 - origin
+            polys.append(np.column_stack([d @ xdir, d @ ydir]))
+        areas = [0.5 * float(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])) for p in polys]
+        depth = [sum(_inside(polys[i][0], polys[j]) for j in range(len(polys)) if j != i) for i in range(len(polys))]
+        zdir = np.cross(xdir, ydir)
+        pln = gp_Pln(gp_Ax3(_pnt(origin), gp_Dir(*map(float, zdir)), gp_Dir(*map(float, xdir))))
+        out: list[TopoDS_Face] = []
+        with occ_guard("building a planar medial sheet"):
+            for i, loop in enumerate(loops):
+                if depth[i] % 2:
+                    continue
+                wire = self._wire(loop, reverse=areas[i] < 0)
+                mk = BRepBuilderAPI_MakeFace(pln, wire, True)
+                for j, inner in enumerate(loops):
+                    if depth[j] == depth[i] + 1 and _inside(polys[j][0], polys[i]):
+                        mk.Add(self._wire(inner, reverse=areas[j] > 0))
+                if not mk.IsDone():
+                    raise ComputationError("a planar medial sheet could not be built")
+                face = mk.Face()
+                self.faces.append(face)
+                out.append(face)
+        return out
+
+    def _wire(self, loop: list[tuple[Hashable, bool]], *, reverse: bool) -> TopoDS_Wire:
+        wire = TopoDS_Wire()
+        self.builder.MakeWire(wire)
+        items = loop[::-1] if reverse else loop
+        for key, fwd in items:
+            f = fwd != reverse
+            self.builder.Add(wire, self.curve_edges[key].edge.Oriented(TopAbs_FORWARD if f else TopAbs_REVERSED))
+        return wire
+
+    def compound(self, extra: list[Any] = ()) -> TopoDS_Compound:  # type: ignore[assignment]
+        comp = TopoDS_Compound()
+        self.builder.MakeCompound(comp)
+        for f in self.faces:
+            self.builder.Add(comp, f)
+        for s in extra:
+            self.builder.Add(comp, s)
+        return comp
+
+
+def bspline_points(edge: TopoDS_Edge, n: int) -> FloatArray:
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+
+    c = BRepAdaptor_Curve(edge)
+    ts = np.linspace(c.FirstParameter(), c.LastParameter(), n)
+    out = []
+    for t in ts:
+        p = c.Value(float(t))
+        out.append((p.X(), p.Y(), p.Z()))
+    return np.array(out)
+
+
+def _inside(p: FloatArray, poly: FloatArray) -> bool:
+    x, y = p
+    xs, ys = poly[:, 0], poly[:, 1]
+    xs2, ys2 = np.roll(xs, -1), np.roll(ys, -1)
+    cross = (ys > y) != (ys2 > y)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xint = xs + (y - ys) * (xs2 - xs) / (ys2 - ys)
+    return bool(np.count_nonzero(cross & (x < xint)) % 2)
+
+
+def _loops(items: list[tuple[Hashable, _Edge]]) -> list[list[tuple[Hashable, bool]]]:
+    """Chain edges into closed loops through their vertices."""
+    at: dict[int, list[int]] = {}
+    for i, (_, e) in enumerate(items):
+        at.setdefault(e.v0, []).append(i)
+        at.setdefault(e.v1, []).append(i)
+    used = [False] * len(items)
+    loops = []
+    for i0 in range(len(items)):
+        if used[i0]:
+            continue
+        loop = []
+        i, fwd = i0, True
+        start = items[i0][1].v0
+        while True:
+            used[i] = True
+            loop.append((items[i][0], fwd))
+            e = items[i][1]
+            end = e.v1 if fwd else e.v0
+            if end == start:
+                break
+            nxt = [j for j in at.get(end, []) if not used[j]]
+            if not nxt:
+                raise ComputationError("the mid sheet's boundary does not close")
+            i = nxt[0]
+            fwd = items[i][1].v0 == end
+        loops.append(loop)
+    return loops
