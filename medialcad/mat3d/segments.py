@@ -68,10 +68,18 @@ def _chord(pts: FloatArray) -> FloatArray:
 
 def _foot_on(boundary: Boundary, element: int, c: FloatArray, guess: float) -> FloatArray:
     """The nearest point to ``c`` on an element (Newton from ``guess``, clamped)."""
+    return _foot_param(boundary, element, c, guess)[0]
+
+
+def _foot_param(
+    boundary: Boundary, element: int, c: FloatArray, guess: float
+) -> tuple[FloatArray, float]:
+    """Nearest point to ``c`` on an element and its parameter (a vertex: the angle)."""
     e = boundary.elements[element]
     if e.piece is None:
         assert e.vertex is not None
-        return np.asarray(e.vertex, dtype=float)
+        d = c - e.vertex
+        return np.asarray(e.vertex, dtype=float), float(np.arctan2(d[1], d[0]))
     lo, hi = sorted((e.piece.t0, e.piece.t1))
     t = float(np.clip(guess, lo, hi))
     for _ in range(8):
@@ -84,7 +92,7 @@ def _foot_on(boundary: Boundary, element: int, c: FloatArray, guess: float) -> F
         t = float(np.clip(t - step, lo, hi))
         if abs(step) < 1e-15 * max(1.0, abs(t)):
             break
-    return np.asarray(e.piece.curve.point(np.array([t]))[0], dtype=float)
+    return np.asarray(e.piece.curve.point(np.array([t]))[0], dtype=float), t
 
 
 def _joint(boundary: Boundary, e_from: int, e_to: int) -> tuple[FloatArray, FloatArray]:
@@ -119,38 +127,102 @@ def split_branches(
         out.extend(_split(graph, boundary, b, level))
     used = {n for b in graph.branches for n in (b.start, b.end) if n is not None}
     for nd in graph.nodes:
-        if nd.index not in used:
-            out.extend(_isolated(graph, boundary, nd.index))
+        if nd.index not in used and nd.kind is NodeKind.CURVATURE_CENTRE:
+            out.extend(_fan(graph, boundary, nd.index, None))
     return out
 
 
-def _isolated(graph: MedialGraph, boundary: Boundary, node: int) -> list[Segment]:
-    """A disk: its centre sees the whole loop; two one-sided halves of that loop."""
-    nd = graph.nodes[node]
-    loop = graph.elements[nd.footpoints[0].element].loop if nd.footpoints else 0
-    r = nd.radius
-    # angular step whose cubic interpolation stays far inside the tolerance
-    step = min(0.25, (100.0 * graph.tol / max(r, 1e-300)) ** 0.25)
-    feet = []
+def _project(boundary: Boundary, element: int, c: FloatArray) -> tuple[FloatArray, float]:
+    """Nearest point to ``c`` on an element: coarse search, then Newton."""
+    e = boundary.elements[element]
+    if e.piece is None:
+        return _foot_param(boundary, element, c, 0.0)
+    t = np.linspace(e.piece.t0, e.piece.t1, 65)
+    d = np.linalg.norm(e.piece.curve.point(t) - c, axis=1)
+    return _foot_param(boundary, element, c, float(t[int(np.argmin(d))]))
+
+
+def _loop_points(boundary: Boundary, loop: int, s0: float, s1: float, step: float) -> FloatArray:
+    """Boundary points on loop coordinates ``s0 -> s1`` (increasing, may pass the seam)."""
+    length = boundary.loop_lengths[loop]
+    marks = [s0, s1]
     for e in boundary.elements:
-        if e.loop != loop or e.piece is None:
+        if e.loop != loop:
             continue
-        n = max(4, int(np.ceil(e.length / max(r * step, 1e-300))))
-        t = np.linspace(e.piece.t0, e.piece.t1, n + 1)
-        feet.append(e.piece.curve.point(t)[:-1])
-    f = np.vstack(feet)
-    f = np.vstack([f, f[:1]])
-    half = len(f) // 2
-    segs = []
+        for k in (-1, 0, 1):
+            x = e.s0 + k * length
+            if s0 < x < s1:
+                marks.append(x)
+    marks = sorted(set(marks))
+    out = []
+    for a, b in zip(marks[:-1], marks[1:], strict=True):
+        n = max(2, int(np.ceil((b - a) / step)))
+        out.append(np.linspace(a, b, n + 1)[:-1])
+    ss = np.concatenate(out + [np.array([s1])])
+    pts = []
+    for x in ss:
+        xm = x % length
+        if x > s0 and abs(xm) < 1e-12 * length:
+            xm = length
+        e = _element_at(boundary, loop, xm, prefer_end=x > s0)
+        if e.piece is None:
+            pts.append(np.asarray(e.vertex, dtype=float))
+        else:
+            pts.append(e.piece.curve.point(np.atleast_1d(boundary.param_of(e, np.array([xm]))))[0])
+    return np.array(pts)
+
+
+def _element_at(boundary: Boundary, loop: int, s: float, prefer_end: bool):  # type: ignore[no-untyped-def]
+    cands = [e for e in boundary.elements if e.loop == loop and e.s0 - 1e-12 <= s <= e.s0 + e.length + 1e-12]
+    cands = [e for e in cands if e.piece is not None] or cands
+    return cands[-1] if not prefer_end else cands[0]
+
+
+def _fan(
+    graph: MedialGraph,
+    boundary: Boundary,
+    node: int,
+    ends: tuple[tuple[int, float], tuple[int, float]] | None,
+) -> list[Segment]:
+    """The boundary stretch seen by a curvature-centre node as one-sided segments.
+
+    ``ends`` are the (element, parameter) of the feet of the branch ending at the node;
+    ``None`` for an isolated node (a disk): the whole loop.
+    """
+    nd = graph.nodes[node]
+    r = nd.radius
+    step = r * min(0.25, (2.0 * graph.tol / max(r, 1e-300)) ** 0.25)
+    if ends is None:
+        loop = graph.elements[nd.footpoints[0].element].loop if nd.footpoints else 0
+        length = boundary.loop_lengths[loop]
+        pieces = [(0.0, 0.5 * length), (0.5 * length, length)]
+    else:
+        (ea, pa), (eb, pb) = ends
+        loop = boundary.elements[ea].loop
+        length = boundary.loop_lengths[loop]
+        sa = float(boundary.s_of(boundary.elements[ea], np.array([pa]))[0])
+        sb = float(boundary.s_of(boundary.elements[eb], np.array([pb]))[0])
+        if nd.footpoints:
+            f0 = nd.footpoints[0]
+            sn = float(boundary.s_of(boundary.elements[f0.element], np.array([f0.param]))[0])
+        else:
+            sn = sa + 0.5 * ((sb - sa) % length)
+        # the stretch between the feet that holds the node's own foot
+        lo, hi = (sa, sb) if (sn - sa) % length <= (sb - sa) % length else (sb, sa)
+        span = (hi - lo) % length
+        if span < 1e-9 * length or span > length * (1 - 1e-9):
+            return []
+        pieces = [(lo, lo + span)]
     end = End("node", node, nd.kind)
-    for lo, hi in ((0, half), (half, len(f) - 1)):
-        part = f[lo : hi + 1]
+    segs = []
+    for s0, s1 in pieces:
+        part = _loop_points(boundary, loop, s0, s1, step)
+        if len(part) < 2 or float(np.linalg.norm(part[-1] - part[0])) + float(np.ptp(part, axis=0).max()) <= 1e-9 * boundary.diag:
+            continue
         w = _chord(part)
         m = len(part)
         centre = np.broadcast_to(nd.point_2d, (m, 2)).copy()
-        segs.append(
-            Segment(-1, w, centre, np.full(m, r), part, part.copy(), -1, -1, end, end, True)
-        )
+        segs.append(Segment(-1, w, centre, np.full(m, r), part, part.copy(), -1, -1, end, end, True))
     return segs
 
 
@@ -174,10 +246,13 @@ def _split(
         if nd.kind is NodeKind.CONVEX_VERTEX:
             fa[where] = fb[where] = nd.point_2d
             continue
-        for feet, els in ((fa, ea), (fb, eb)):
-            cands = [f for f in nd.footpoints if f.element == els[where]] or list(nd.footpoints)
-            best = min(cands, key=lambda f: float(np.linalg.norm(f.point_2d - feet[where])))
-            feet[where] = best.point_2d
+        for feet, els, pars in ((fa, ea, b.foot_a_param), (fb, eb, b.foot_b_param)):
+            same = [f for f in nd.footpoints if f.element == els[where]]
+            if nd.kind is NodeKind.BRANCH_POINT and same:
+                best = min(same, key=lambda f: float(np.linalg.norm(f.point_2d - feet[where])))
+                feet[where] = best.point_2d
+            else:  # the limit of this side's feet: the node's nearest point on the element
+                feet[where] = _foot_on(boundary, int(els[where]), nd.point_2d, float(pars[where]))
 
     # cut points: (u, kind, centre, radius, foot_a, foot_b)
     cuts: list[tuple[float, str, FloatArray, float, FloatArray, FloatArray]] = []
@@ -258,8 +333,68 @@ def _split(
         # element of each side on this segment: the one at the segment's middle
         el_a = int(ea[k] if _side_before(cuts, um, u[k], u[k + 1], ea[k], ea[k + 1]) else ea[k + 1])
         el_b = int(eb[k] if _side_before(cuts, um, u[k], u[k + 1], eb[k], eb[k + 1]) else eb[k + 1])
-        segs.append(Segment(b.index, w, centre, radius, foot_a, foot_b, el_a, el_b, e0, e1))
+        arrays = _refine(
+            boundary, sp, u0, span, el_a, el_b, w, centre, radius, foot_a, foot_b, graph.tol
+        )
+        segs.append(Segment(b.index, *arrays, el_a, el_b, e0, e1))
+    # the boundary stretch a curvature-centre end sees as a whole (an arc's fan)
+    for where, node in ((0, b.start), (n - 1, b.end)):
+        if node is None or graph.nodes[node].kind is not NodeKind.CURVATURE_CENTRE:
+            continue
+        if float(np.linalg.norm(fa[where] - fb[where])) <= 1e-3 * graph.tol:
+            continue
+        nd = graph.nodes[node]
+        pa = _project(boundary, int(ea[where]), nd.point_2d)[1]
+        pb = _project(boundary, int(eb[where]), nd.point_2d)[1]
+        segs.extend(_fan(graph, boundary, node, ((int(ea[where]), pa), (int(eb[where]), pb))))
     return segs
+
+
+def _refine(
+    boundary: Boundary,
+    sp: object,
+    u0: float,
+    span: float,
+    el_a: int,
+    el_b: int,
+    w: FloatArray,
+    centre: FloatArray,
+    radius: FloatArray,
+    foot_a: FloatArray,
+    foot_b: FloatArray,
+    tol: float,
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Insert exact samples until the interpolated rows are within a fraction of ``tol``.
+
+    Feet (which become the rims on the solid's boundary) must be much closer than the
+    tolerance (0.02 tol); centres follow the branch's spline within 0.1 tol.
+    """
+    from scipy.interpolate import make_interp_spline
+
+    for _ in range(10):
+        if len(w) < 2:
+            break
+        k = min(3, len(w) - 1)
+        wm = 0.5 * (w[1:] + w[:-1])
+        fit_c = make_interp_spline(w, np.column_stack([centre, radius]), k=k)(wm)
+        fit_a = make_interp_spline(w, foot_a, k=k)(wm)
+        fit_b = make_interp_spline(w, foot_b, k=k)(wm)
+        ex = sp(u0 + wm * span)  # type: ignore[operator]
+        ex_a = np.array([_project(boundary, el_a, c)[0] for c in ex[:, :2]])
+        ex_b = np.array([_project(boundary, el_b, c)[0] for c in ex[:, :2]])
+        bad = (np.linalg.norm(fit_c - ex, axis=1) > 0.1 * tol)
+        bad |= np.linalg.norm(fit_a - ex_a, axis=1) > 0.02 * tol
+        bad |= np.linalg.norm(fit_b - ex_b, axis=1) > 0.02 * tol
+        bad &= np.diff(w) > 1e-7
+        if not np.any(bad):
+            break
+        idx = np.nonzero(bad)[0]
+        w = np.insert(w, idx + 1, wm[idx])
+        centre = np.insert(centre, idx + 1, ex[idx, :2], axis=0)
+        radius = np.insert(radius, idx + 1, ex[idx, 2])
+        foot_a = np.insert(foot_a, idx + 1, ex_a[idx], axis=0)
+        foot_b = np.insert(foot_b, idx + 1, ex_b[idx], axis=0)
+    return w, centre, radius, foot_a, foot_b
 
 
 def _side_before(cuts: list, um: float, ulo: float, uhi: float, e0: int, e1: int) -> bool:
