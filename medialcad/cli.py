@@ -1,9 +1,17 @@
-"""Command line: ``medialcad INPUT -o OUTPUT [--tol T] [--png FILE] [--report R.json]``.
+"""Command line: ``medialcad INPUT -o OUTPUT [options]`` and ``medialcad batch IN_DIR -o OUT_DIR``.
 
-Exit codes: 0 success, 2 the input cannot be handled (:class:`InputError`), 1 an internal
-failure. Errors are one line on stderr (a traceback only with ``--debug``). Outputs are
-written atomically: a failed run leaves no output, sidecar or picture behind and never
-clobbers an existing file.
+Every solid of ``INPUT`` gets its 3D medial axis (extrusions and revolutions); a file of
+planar faces without any solid gets the 2D medial axis of every face.
+
+Exit codes: 0 success, 2 the input (or one of its solids) cannot be handled
+(:class:`InputError`), 1 an internal failure, 130 interrupted. Errors are one line on
+stderr (a traceback only with ``--debug``).
+
+Outputs are all-or-nothing: the medial axis, its radius sidecar, the picture and the
+report are written to a staging folder beside their targets and moved into place together
+at the end, only when every solid succeeded. A failed run leaves no output behind and never
+clobbers an existing file -- except the ``--report``, which is written on a refusal too
+(it is the diagnostic: it says which solid failed and why).
 """
 
 from __future__ import annotations
@@ -11,40 +19,410 @@ from __future__ import annotations
 import argparse
 import json
 import logging
+import math
 import os
+import shutil
 import sys
 import tempfile
 import time
+import traceback
+from dataclasses import dataclass, field
 from pathlib import Path
+from types import TracebackType
 from typing import Any
 
 from medialcad.errors import InputError, MedialCadError
 
-__all__ = ["main"]
+__all__ = ["Conversion", "convert", "default_radius_path", "main", "solid_product_name"]
 
 log = logging.getLogger(__name__)
+
+_DESCRIPTION = """\
+Exact medial axis transform (MAT) of CAD solids and faces: STEP/BREP in, STEP/BREP out.
+
+Every solid in INPUT is processed (extrusions and revolutions); a file holding planar
+faces and no solid gets the 2D medial axis of every face instead.
+
+Output: one STEP product per solid, named solid-N-medial-axis (N = 1, 2, ... in file
+order). With a single solid the sheets, seams, junctions, skeletal edges and rims are
+named too (sheet-1, seam-1, ...; the names used by the radius sidecar).
+
+All or nothing: if any solid cannot be handled, no medial axis and no sidecar is written
+(an existing OUTPUT is left untouched); the --report is still written and lists every
+solid with its status ("ok", "refused" or "failed") and the reason.
+
+Run 'medialcad batch --help' for folders of STEP files."""
+
+_EPILOG = """\
+radius sidecar (solids only): the radius function of every named entity, as JSON; by
+default OUTPUT with its suffix replaced by .radius.json (out/part.step ->
+out/part.radius.json). With several solids it holds {"solids": [...]}, one entry per solid.
+
+exit codes: 0 success; 2 the input or one of its solids cannot be handled (one line on
+stderr naming the solid); 1 an internal failure; 130 interrupted."""
+
+
+# --------------------------------------------------------------------------- arguments
 
 
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="medialcad",
-        description="Exact medial axis transform of CAD faces (STEP/BREP in, STEP/BREP out).",
+        description=_DESCRIPTION,
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    p.add_argument("input", help="STEP (.step/.stp) or BREP (.brep) file")
-    p.add_argument("-o", "--output", required=True, help="medial axis output file")
+    p.add_argument("input", metavar="INPUT", help="STEP (.step/.stp) or BREP (.brep) file")
     p.add_argument(
-        "--tol", type=float, default=None, help="absolute tolerance (default 1e-5 x bbox diagonal)"
+        "-o", "--output", metavar="OUTPUT", required=True, help="medial axis output file"
+    )
+    p.add_argument(
+        "--tol",
+        metavar="T",
+        type=float,
+        default=None,
+        help="absolute fit tolerance (default 1e-5 x bounding-box diagonal)",
     )
     p.add_argument(
         "--format",
         choices=("step", "brep"),
         default=None,
-        help="output format (default: by suffix)",
+        help="output format (default: by the suffix of OUTPUT; .brep/.brp is BREP)",
     )
-    p.add_argument("--report", default=None, help="write a JSON report here")
-    p.add_argument("--png", default=None, help="write a picture of the medial axis here")
+    p.add_argument("--report", metavar="REPORT.json", default=None, help="write a JSON report here")
+    radius = p.add_mutually_exclusive_group()
+    radius.add_argument(
+        "--radius",
+        metavar="RADIUS.json",
+        default=None,
+        help="radius sidecar file (solids; default OUTPUT with suffix .radius.json)",
+    )
+    radius.add_argument("--no-radius", action="store_true", help="do not write a radius sidecar")
+    p.add_argument(
+        "--png",
+        metavar="PICTURE.png",
+        default=None,
+        help="picture of the 2D medial axis (of the first face, or the first solid's profile)",
+    )
     p.add_argument("--debug", action="store_true", help="show tracebacks")
     return p
+
+
+def default_radius_path(output: str | os.PathLike[str]) -> Path:
+    """Where the radius sidecar of ``output`` goes by default: ``out/part.step`` ->
+    ``out/part.radius.json``."""
+    return Path(output).with_suffix(".radius.json")
+
+
+def solid_product_name(index: int) -> str:
+    """STEP product name of the medial axis of solid ``index`` (1-based)."""
+    return f"solid-{index}-medial-axis"
+
+
+# --------------------------------------------------------------------------- staging
+
+
+class _Staging:
+    """Files written into hidden staging folders beside their targets, moved into place
+    together by :meth:`commit`; whatever was not committed is removed on exit."""
+
+    def __init__(self) -> None:
+        self._dirs: dict[Path, Path] = {}
+        self._pairs: list[tuple[Path, Path]] = []
+
+    def __enter__(self) -> _Staging:
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        for d in self._dirs.values():
+            shutil.rmtree(d, ignore_errors=True)
+
+    def path(self, target: Path) -> Path:
+        """A temporary path with ``target``'s name (so STEP headers carry the right name)."""
+        parent = target.parent.absolute()
+        if parent not in self._dirs:
+            parent.mkdir(parents=True, exist_ok=True)
+            self._dirs[parent] = Path(tempfile.mkdtemp(prefix=".medialcad-stage-", dir=parent))
+        tmp = self._dirs[parent] / target.name
+        self._pairs.append((tmp, target))
+        return tmp
+
+    def commit(self) -> list[Path]:
+        """Move every staged file onto its target (renames within one directory)."""
+        for tmp, final in self._pairs:
+            if not tmp.exists():
+                raise MedialCadError(f"internal: {final} was staged but not written")
+        for tmp, final in self._pairs:
+            if final.exists():
+                os.chmod(tmp, final.stat().st_mode & 0o7777)
+            os.replace(tmp, final)
+        done = [final for _, final in self._pairs]
+        self._pairs = []
+        return done
+
+
+# --------------------------------------------------------------------------- conversion
+
+
+@dataclass
+class Conversion:
+    """What :func:`convert` did.
+
+    Attributes:
+        code: exit code: 0 success, 2 a solid was refused, 1 a solid failed internally.
+        report: the JSON report (also written to ``report_path`` if given).
+        lines: one summary line per face/solid, for stdout.
+        error: one-line error message when ``code != 0``.
+        written: files moved into place.
+    """
+
+    code: int
+    report: dict[str, Any]
+    lines: list[str] = field(default_factory=list)
+    error: str | None = None
+    written: list[Path] = field(default_factory=list)
+
+
+def _one_line(text: object) -> str:
+    return " ".join(str(text).split())
+
+
+def _check_tol(tol: float | None) -> None:
+    if tol is not None and not (math.isfinite(tol) and tol > 0):
+        raise InputError(f"--tol must be a positive number, got {tol!r}")
+
+
+def convert(
+    input: str | os.PathLike[str],
+    output: str | os.PathLike[str],
+    *,
+    tol: float | None = None,
+    fmt: str | None = None,
+    report_path: str | os.PathLike[str] | None = None,
+    radius_path: str | os.PathLike[str] | None = None,
+    png: str | os.PathLike[str] | None = None,
+    debug: bool = False,
+) -> Conversion:
+    """Compute the medial axis of every solid (or, without solids, every planar face) of
+    ``input`` and write it to ``output``; the engine behind the ``medialcad`` command.
+
+    Args:
+        input: STEP or BREP file.
+        output: medial axis file (STEP, or BREP with ``fmt="brep"`` / a ``.brep`` suffix).
+        tol: absolute fit tolerance (default ``1e-5`` x bounding-box diagonal).
+        fmt: ``"step"`` or ``"brep"``; default by the suffix of ``output``.
+        report_path: JSON report; written even when a solid is refused.
+        radius_path: radius sidecar (solids only); ``None``: none.
+        png: picture of the 2D medial axis (first face / first solid's profile).
+        debug: print the traceback of every failing solid to stderr.
+
+    Returns:
+        A :class:`Conversion`; ``code != 0`` when a solid was refused or failed (then
+        nothing but the report was written).
+
+    Raises:
+        InputError: the file cannot be read, holds no solid and no face, a face cannot be
+            handled, or the arguments are inconsistent.
+        MedialCadError, OSError: an internal failure while computing or writing.
+    """
+    from medialcad.occ.io import read_shapes
+    from medialcad.occ.shapes import solids
+
+    _check_tol(tol)
+    src, out = Path(input), Path(output)
+    targets = [out] + [Path(p) for p in (report_path, radius_path, png) if p is not None]
+    resolved = [t.resolve() for t in targets]
+    if len(set(resolved)) != len(resolved):
+        raise InputError("the output, report, radius and picture files must all differ")
+    if src.resolve() in resolved:
+        raise InputError(f"{src}: refusing to overwrite the input file")
+    if fmt is None:
+        fmt = "brep" if out.suffix.lower() in (".brep", ".brp") else "step"
+    if fmt not in ("step", "brep"):
+        raise InputError(f"unknown output format {fmt!r} (step or brep)")
+    shapes = read_shapes(src)
+    all_solids = []
+    loose = 0
+    for sh in shapes:
+        found = solids(sh)
+        all_solids.extend(found)
+        loose += not found
+    if not all_solids:
+        return _convert_faces(src, out, shapes, tol, fmt, report_path, png)
+    if loose:
+        log.warning("%s: %d root shape(s) without a solid are ignored", src, loose)
+    return _convert_solids(src, out, all_solids, tol, fmt, report_path, radius_path, png, debug)
+
+
+# --------------------------------------------------------------------------- solids
+
+
+def _recognition_fields(mat: Any) -> dict[str, Any]:
+    rec = mat.recognition
+    if mat.kind == "extrusion":
+        return {"direction": _floats(rec.direction), "length": float(rec.length)}
+    return {
+        "axis_point": _floats(rec.axis_point),
+        "axis_direction": _floats(rec.axis_direction),
+        "angle": float(rec.angle),
+        "touches_axis": bool(rec.touches_axis),
+    }
+
+
+def _floats(v: Any) -> list[float]:
+    return [float(x) for x in v]
+
+
+def _solve_solid(
+    index: int, count: int, solid: Any, tol: float | None, debug: bool
+) -> tuple[dict[str, Any], Any]:
+    """The report entry of one solid and its medial axis (``None`` if it failed)."""
+    from medialcad.api import medial_axis
+
+    t0 = time.perf_counter()
+    try:
+        mat = medial_axis(solid, tol=tol)
+    except Exception as err:  # noqa: BLE001 -- reported per solid; the others go on
+        if debug:
+            traceback.print_exception(err, file=sys.stderr)
+        refused = isinstance(err, InputError)
+        message = _one_line(err) if isinstance(err, MedialCadError) else _describe(err)
+        log.debug("solid %d of %d %s: %s", index, count, "refused" if refused else "failed", err)
+        return {
+            "index": index,
+            "status": "refused" if refused else "failed",
+            "error": message,
+            "error_type": type(err).__name__,
+            "seconds": round(time.perf_counter() - t0, 4),
+        }, None
+    seconds = time.perf_counter() - t0
+    timings = {k: round(float(v), 4) for k, v in mat.timings.items()}
+    timings["total"] = round(seconds, 4)
+    entry: dict[str, Any] = {
+        "index": index,
+        "status": "ok",
+        "kind": mat.kind,
+        **_recognition_fields(mat),
+        "counts": mat.counts(),
+        "rmax": float(mat.rmax),
+        "tol": float(mat.tol),
+        "error_bound": float(mat.tol),
+        "timings": timings,
+        "seconds": round(seconds, 4),
+        "product": solid_product_name(index),
+    }
+    return entry, mat
+
+
+def _describe(err: BaseException) -> str:
+    return _one_line(f"internal error: {type(err).__name__}: {err}")
+
+
+def _solid_line(entry: dict[str, Any], count: int) -> str:
+    head = f"solid {entry['index']} of {count}"
+    if entry["status"] != "ok":
+        return f"{head}: {entry['status']}: {entry['error']}"
+    c = entry["counts"]
+    if entry["kind"] == "extrusion":
+        d = ", ".join(f"{x:.4g}" for x in entry["direction"])
+        what = f"extrusion along ({d}), length {entry['length']:.6g}"
+    else:
+        what = f"revolution through {math.degrees(entry['angle']):.6g} deg"
+    return (
+        f"{head}: {what}: {c['sheets']} sheets, {c['seams']} seams, {c['junctions']} junctions, "
+        f"{c['skeletal_edges']} skeletal edges, rmax {entry['rmax']:.6g}, {entry['seconds']:.3f} s"
+    )
+
+
+def _convert_solids(
+    src: Path,
+    out: Path,
+    all_solids: list[Any],
+    tol: float | None,
+    fmt: str,
+    report_path: str | os.PathLike[str] | None,
+    radius_path: str | os.PathLike[str] | None,
+    png: str | os.PathLike[str] | None,
+    debug: bool,
+) -> Conversion:
+    from medialcad.occ.io import write_brep, write_step, write_step_named
+    from medialcad.occ.shapes import compound
+
+    n = len(all_solids)
+    entries: list[dict[str, Any]] = []
+    mats: list[Any] = []
+    for i, solid in enumerate(all_solids, start=1):
+        entry, mat = _solve_solid(i, n, solid, tol, debug)
+        entries.append(entry)
+        mats.append(mat)
+    report: dict[str, Any] = {
+        "input": str(src),
+        "output": str(out),
+        "options": {"tol": tol, "format": fmt},
+        "solids": entries,
+    }
+    lines = [_solid_line(e, n) for e in entries]
+    bad = [e for e in entries if e["status"] != "ok"]
+    report["status"] = (
+        "ok" if not bad else ("refused" if any(e["status"] == "refused" for e in bad) else "failed")
+    )
+    with _Staging() as staging:
+        if bad:
+            what = "; ".join(f"solid {e['index']} of {n} {e['status']}: {e['error']}" for e in bad)
+            error = f"{what} -- nothing written to {out}"
+            report["written"] = False
+            written: list[Path] = []
+            if report_path is not None:
+                _write_json(staging.path(Path(report_path)), report)
+                written = staging.commit()
+                error += f" (report: {report_path})"
+            code = 2 if report["status"] == "refused" else 1
+            return Conversion(code, report, lines, error, written)
+        report["written"] = True
+        tmp_out = staging.path(out)
+        if fmt == "brep":
+            write_brep(mats[0].compound if n == 1 else compound(m.compound for m in mats), tmp_out)
+        elif n == 1:
+            write_step_named(mats[0].compound, mats[0].names(), tmp_out, name=solid_product_name(1))
+        else:
+            write_step(
+                [m.compound for m in mats],
+                tmp_out,
+                {i: solid_product_name(i + 1) for i in range(n)},
+            )
+        if radius_path is not None:
+            report["radius"] = str(radius_path)
+            if n == 1:
+                data = mats[0].radius_data()
+            else:
+                data = {
+                    "format": "medialcad-radius-multi/1",
+                    "solids": [
+                        {"index": i, "product": solid_product_name(i), **m.radius_data()}
+                        for i, m in enumerate(mats, start=1)
+                    ],
+                }
+            _write_json(staging.path(Path(radius_path)), data, indent=1)
+        if png is not None:
+            from medialcad.plot import plot_medial_axis_2d
+
+            plot_medial_axis_2d(mats[0].mat2d, staging.path(Path(png)))
+        if report_path is not None:
+            _write_json(staging.path(Path(report_path)), report)
+        written = staging.commit()
+    return Conversion(0, report, lines, None, written)
+
+
+def _write_json(path: Path, data: dict[str, Any], indent: int = 2) -> None:
+    path.write_text(json.dumps(data, indent=indent) + "\n", encoding="utf-8")
+
+
+# --------------------------------------------------------------------------- faces
 
 
 def _face_report(index: int, mat: Any, seconds: float) -> dict[str, Any]:
@@ -65,83 +443,92 @@ def _face_report(index: int, mat: Any, seconds: float) -> dict[str, Any]:
     }
 
 
-def _run(args: argparse.Namespace) -> int:
+def _convert_faces(
+    src: Path,
+    out: Path,
+    shapes: list[Any],
+    tol: float | None,
+    fmt: str,
+    report_path: str | os.PathLike[str] | None,
+    png: str | os.PathLike[str] | None,
+) -> Conversion:
+    """The 2D behaviour: every planar face; any bad face fails the whole file."""
     from medialcad.api import medial_axis_2d
-    from medialcad.occ.io import read_shapes, write_brep, write_step
-    from medialcad.occ.shapes import compound, faces, solids
+    from medialcad.occ.io import write_brep, write_step
+    from medialcad.occ.shapes import compound, faces
 
-    shapes = read_shapes(args.input)
-    all_solids = [s for sh in shapes for s in solids(sh)]
-    if all_solids:
-        raise InputError(
-            f"{args.input} holds {len(all_solids)} solid(s): this release computes the medial "
-            "axis of planar faces only (solids come with the extrusion/revolution work)"
-        )
     all_faces = [f for sh in shapes for f in faces(sh)]
     if not all_faces:
-        raise InputError(f"{args.input} holds no face")
+        raise InputError(f"{src} holds no solid and no face")
     results = []
-    report: dict[str, Any] = {"input": str(args.input), "faces": []}
+    report: dict[str, Any] = {
+        "input": str(src),
+        "output": str(out),
+        "options": {"tol": tol, "format": fmt},
+        "faces": [],
+    }
     for i, face in enumerate(all_faces):
         t0 = time.perf_counter()
         try:
-            mat = medial_axis_2d(face, tol=args.tol)
+            mat = medial_axis_2d(face, tol=tol)
         except MedialCadError as err:
             raise type(err)(f"face {i}: {err}") from err
         results.append(mat)
         report["faces"].append(_face_report(i, mat, time.perf_counter() - t0))
-    out = Path(args.output)
-    fmt = args.format or ("brep" if out.suffix.lower() == ".brep" else "step")
     comps = [m.to_compound() for m in results]
-    staged: list[tuple[Path, Path]] = []
-    try:
-        # stage every output beside its target, then move them all into place
-        if args.png:
+    with _Staging() as staging:
+        if png is not None:
             from medialcad.plot import plot_medial_axis_2d
 
-            png = Path(args.png)
-            tmp_png = _stage(png)
-            staged.append((tmp_png, png))
-            plot_medial_axis_2d(results[0], tmp_png)
-        if args.report:
-            rep = Path(args.report)
-            tmp_rep = _stage(rep)
-            staged.append((tmp_rep, rep))
-            tmp_rep.write_text(json.dumps(report, indent=2))
-        tmp_out = _stage(out)
-        staged.append((tmp_out, out))
+            plot_medial_axis_2d(results[0], staging.path(Path(png)))
+        if report_path is not None:
+            _write_json(staging.path(Path(report_path)), report)
+        tmp_out = staging.path(out)
         if fmt == "brep":
             write_brep(compound(comps), tmp_out)
         else:
             write_step(comps, tmp_out, {i: f"medial-axis-face-{i}" for i in range(len(comps))})
-        # everything is written: move it all into place (same directories, so renames)
-        umask = os.umask(0)
-        os.umask(umask)
-        for tmp, final in staged:
-            os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600 files
-            os.replace(tmp, final)
-    except BaseException:
-        for tmp, _ in staged:
-            tmp.unlink(missing_ok=True)
-        raise
-    for r in report["faces"]:
-        print(
-            f"face {r['index']}: {r['branches']} branches, {r['branch_points']} branch points, "
-            f"rmax {r['rmax']:.6g}, {r['seconds']:.3f} s"
-        )
-    print(f"wrote {out}")
+        written = staging.commit()
+    lines = [
+        f"face {r['index']}: {r['branches']} branches, {r['branch_points']} branch points, "
+        f"rmax {r['rmax']:.6g}, {r['seconds']:.3f} s"
+        for r in report["faces"]
+    ]
+    return Conversion(0, report, lines, None, written)
+
+
+# --------------------------------------------------------------------------- main
+
+
+def _run(args: argparse.Namespace) -> int:
+    radius = None if args.no_radius else (args.radius or default_radius_path(args.output))
+    result = convert(
+        args.input,
+        args.output,
+        tol=args.tol,
+        fmt=args.format,
+        report_path=args.report,
+        radius_path=radius,
+        png=args.png,
+        debug=args.debug,
+    )
+    for line in result.lines:
+        print(line)
+    if result.code != 0:
+        sys.stdout.flush()
+        print(f"medialcad: error: {result.error}", file=sys.stderr)
+        return result.code
+    print(f"wrote {', '.join(str(p) for p in result.written)}")
     return 0
-
-
-def _stage(target: Path) -> Path:
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix, dir=target.parent)
-    os.close(fd)
-    return Path(name)
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``medialcad`` console script."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv and argv[0] == "batch":
+        from medialcad.batch import main as batch_main
+
+        return batch_main(argv[1:])
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.DEBUG if args.debug else logging.WARNING)
     try:
@@ -152,17 +539,17 @@ def main(argv: list[str] | None = None) -> int:
     except InputError as err:
         if args.debug:
             raise
-        print(f"medialcad: error: {err}", file=sys.stderr)
+        print(f"medialcad: error: {_one_line(err)}", file=sys.stderr)
         return 2
     except (MedialCadError, OSError) as err:
         if args.debug:
             raise
-        print(f"medialcad: failed: {err}", file=sys.stderr)
+        print(f"medialcad: failed: {_one_line(err)}", file=sys.stderr)
         return 1
     except Exception as err:
         if args.debug:
             raise
-        print(f"medialcad: internal error: {type(err).__name__}: {err}", file=sys.stderr)
+        print(f"medialcad: {_describe(err)}", file=sys.stderr)
         return 1
 
 

@@ -553,7 +553,18 @@ class SolidBoundary:
         out = []
         for p in _points(points):
             self._classifier.Perform(_pnt(p), tol)
-            out.append(self._classifier.State() != TopAbs_OUT)
+            state_in = self._classifier.State() != TopAbs_OUT
+            if not state_in:
+                # OCCT's classifier can answer OUT for points exactly on an axis of
+                # symmetry (its ray runs along a seam or through an apex): ask again at
+                # three points nudged by 1e-6 diag and take the majority
+                votes = 0
+                for k in range(3):
+                    nudge = np.array([(k == 0) - 0.3, (k == 1) - 0.3, (k == 2) - 0.3])
+                    self._classifier.Perform(_pnt(p + 1e-6 * self.diag * nudge), tol)
+                    votes += self._classifier.State() != TopAbs_OUT
+                state_in = votes >= 2
+            out.append(state_in)
         return np.array(out, dtype=bool)
 
     def boundary_samples(self, n: int, seed: int = 0) -> tuple[FloatArray, FloatArray]:

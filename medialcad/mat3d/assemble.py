@@ -106,3 +106,96 @@ def _used(cb: Any, edge: Any) -> bool:
                 return True
             ex.Next()
     return False
+
+
+def build_grid_complex(
+    grids: list[Any],
+    offsets: list[tuple],
+    junctions: list[tuple[FloatArray, float]],
+    axis_lines: list[tuple[FloatArray, FloatArray, FloatArray]],
+    *,
+    diag: float,
+    mid_plane: tuple[FloatArray, FloatArray, FloatArray] | None,
+    seam_roles: Callable[[tuple], str | None],
+) -> tuple:
+    """Like :func:`build_complex` for tensor patches (revolutions)."""
+    from medialcad.mat3d.revolution import interp_grid
+    from medialcad.occ.complex import ComplexBuilder, Row, bspline
+
+    cb = ComplexBuilder(merge=1e-9 * diag, tol=max(1e-7 * diag, 1e-9))
+    sheets: list[Sheet] = []
+    row_radius: dict[tuple, tuple[FloatArray, int, FloatArray]] = {}
+    named_sides: list[tuple[Any, str, float]] = []
+    mid_radius = 0.0
+    for g in grids:
+        tu, tv, ku, kv, poles = interp_grid(g.w, g.v, g.points)
+        _, _, _, _, rpoles = interp_grid(g.w, g.v, g.radius)
+        face = cb.grid_face(poles, tu, tv, ku, kv, g.bottom_key, g.top_key)
+        sheets.append(
+            Sheet(
+                f"sheet-{len(sheets) + 1}", face, g.role, tu, ku,
+                rpoles[:, 0], rpoles[:, -1], tv, kv, rpoles,
+            )
+        )
+        row_radius.setdefault(g.bottom_key, (tu, ku, rpoles[:, 0]))
+        row_radius.setdefault(g.top_key, (tu, ku, rpoles[:, -1]))
+        if g.top_key[0] == "OFF":
+            mid_radius = float(g.radius[:, -1].mean())
+        for (role, rad), col in ((g.left, poles[0]), (g.right, poles[-1])):
+            if role is None:
+                continue
+            v0, v1 = cb.vertex(col[0]), cb.vertex(col[-1])
+            mid = col[len(col) // 2]
+            key = ("side", min(v0, v1), max(v0, v1), tuple(np.round(mid / (100 * cb.merge)).astype(int)))
+            e = cb.curve_edges.get(key)
+            if e is not None:
+                named_sides.append((e.edge, role, rad))
+    if mid_plane is not None and offsets:
+        for face in cb.planar_faces(offsets, *mid_plane):
+            sheets.append(
+                Sheet(f"sheet-{len(sheets) + 1}", face, "mid", _LINEAR, 1, np.array([mid_radius] * 2), np.array([mid_radius] * 2))
+            )
+    seams: list[Seam] = []
+    skeletal: list[Seam] = []
+    rims: list[Seam] = []
+    for key, e in cb.curve_edges.items():
+        role = seam_roles(key) if key[0] != "side" else None
+        if role is None:
+            continue
+        knots, degree, rad = row_radius[key]
+        (seams if role == "seam" else rims).append(Seam("", e.edge, role, knots, degree, rad))
+    seen: list[Any] = []
+    for edge, role, rad in named_sides:
+        if any(edge.IsSame(x) for x in seen):
+            continue
+        seen.append(edge)
+        target = {"seam": seams, "skeletal": skeletal, "rim": rims}[role]
+        target.append(Seam("", edge, role, _LINEAR, 1, np.array([rad, rad])))
+    extra: list[Any] = []
+    for pts, rad, w in axis_lines:
+        from scipy.interpolate import make_interp_spline
+
+        k = int(min(3, len(w) - 1))
+        sp = make_interp_spline(w, pts, k=k)
+        sr = make_interp_spline(w, rad, k=k)
+        row = Row(("AXIS", len(extra)), np.asarray(sp.t), np.asarray(sp.c), k)
+        e = cb.curve_edge(row)
+        extra.append(e.edge)
+        skeletal.append(Seam("", e.edge, "skeletal", np.asarray(sr.t), k, np.asarray(sr.c)))
+    del bspline
+    seams = [Seam(f"seam-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(seams)]
+    skeletal = [Seam(f"skeletal-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(skeletal)]
+    rims = [Seam(f"rim-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(rims)]
+    juncs: list[Junction] = []
+    seen_v: set[int] = set()
+    for p, r in junctions:
+        vi = cb.vertex(p)
+        if vi in seen_v:
+            continue
+        seen_v.add(vi)
+        juncs.append(Junction(f"junction-{len(juncs) + 1}", cb.vertices[vi], cb.points[vi], float(r)))
+    loose = [e for e in extra if not _used(cb, e)]
+    if not cb.faces and not loose:
+        loose = [j.vertex for j in juncs]
+    comp = cb.compound(loose)
+    return tuple(sheets), tuple(seams), tuple(skeletal), tuple(rims), tuple(juncs), comp

@@ -37,11 +37,22 @@ class Sheet:
     degree: int
     radius0: FloatArray
     radius1: FloatArray
+    v_knots: FloatArray | None = None  # tensor sheets: radius poles (nu, nv) on (knots, v_knots)
+    v_degree: int = 1
+    radius_grid: FloatArray | None = None
 
     def radius(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
         """Radius at face parameters ``(u, v)``."""
         if self.role == "mid":
             return np.full(np.shape(np.asarray(u, dtype=float)), float(self.radius0[0]))
+        if self.radius_grid is not None and self.v_knots is not None:
+            uu = np.atleast_1d(np.asarray(u, dtype=float))
+            vv = np.broadcast_to(np.asarray(v, dtype=float), uu.shape)
+            cu = _bspline(self.knots, self.radius_grid, self.degree, uu)  # (n, nv)
+            out = np.array(
+                [_bspline(self.v_knots, cu[i], self.v_degree, vv[i]) for i in range(len(uu))]
+            )
+            return out.reshape(np.shape(np.asarray(u, dtype=float)))
         vv = np.asarray(v, dtype=float)
         r0 = _bspline(self.knots, self.radius0, self.degree, u)
         r1 = _bspline(self.knots, self.radius1, self.degree, u)
@@ -50,6 +61,15 @@ class Sheet:
     def to_json(self) -> dict[str, Any]:
         if self.role == "mid":
             return {"type": "constant", "radius": float(self.radius0[0])}
+        if self.radius_grid is not None and self.v_knots is not None:
+            return {
+                "type": "tensor",
+                "u_knots": self.knots.tolist(),
+                "u_degree": self.degree,
+                "v_knots": self.v_knots.tolist(),
+                "v_degree": self.v_degree,
+                "poles": self.radius_grid.tolist(),
+            }
         return {
             "type": "ruled",
             "u_knots": self.knots.tolist(),

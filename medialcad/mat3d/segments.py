@@ -12,6 +12,7 @@ Pure numpy/scipy: no OCC.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,6 +25,7 @@ from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
 __all__ = ["End", "Segment", "split_branches"]
 
 FloatArray = NDArray[np.float64]
+LevelFn = Callable[[FloatArray, FloatArray], FloatArray]
 
 
 @dataclass(frozen=True)
@@ -119,9 +121,13 @@ def _joint(boundary: Boundary, e_from: int, e_to: int) -> tuple[FloatArray, Floa
 
 
 def split_branches(
-    graph: MedialGraph, boundary: Boundary, level: float | None = None
+    graph: MedialGraph, boundary: Boundary, level: float | LevelFn | None = None
 ) -> list[Segment]:
-    """Segments of every branch of ``graph`` (see the module docstring)."""
+    """Segments of every branch of ``graph`` (see the module docstring).
+
+    ``level`` is a radius ``h`` (cut where ``r = h``) or a function ``g(centres (n, 2),
+    radii (n,)) -> (n,)`` (cut where ``g = 0``).
+    """
     out: list[Segment] = []
     for b in graph.branches:
         out.extend(_split(graph, boundary, b, level))
@@ -227,7 +233,7 @@ def _fan(
 
 
 def _split(
-    graph: MedialGraph, boundary: Boundary, b: Branch, level: float | None
+    graph: MedialGraph, boundary: Boundary, b: Branch, level: float | LevelFn | None
 ) -> list[Segment]:
     pts = b.points_2d
     u = _chord(pts)
@@ -289,15 +295,29 @@ def _split(
                 gb = p
             cuts.append((us, "transition", c, r, ga, gb))
     if level is not None:
+        if callable(level):
+            gfun = level
+        else:
+            h = float(level)
+
+            def gfun(c: FloatArray, r: FloatArray) -> FloatArray:
+                return np.asarray(r - h)
+
+        def g1(x: float) -> float:
+            v = sp(np.array([x]))
+            return float(gfun(v[:, :2], v[:, 2])[0])
+
         dense = np.unique(np.concatenate([u, 0.5 * (u[1:] + u[:-1])]))
-        rv = sp(dense)[:, 2] - level
-        rv[0], rv[-1] = rad[0] - level, rad[-1] - level
+        vals = sp(dense)
+        vals[0, :2], vals[0, 2] = ca[0], rad[0]
+        vals[-1, :2], vals[-1, 2] = ca[-1], rad[-1]
+        rv = gfun(vals[:, :2], vals[:, 2])
         for j in range(len(dense) - 1):
             if rv[j] * rv[j + 1] < 0:
-                us = float(brentq(lambda x: float(sp(np.array([x]))[0, 2]) - level, dense[j], dense[j + 1], xtol=1e-14))
+                us = float(brentq(g1, dense[j], dense[j + 1], xtol=1e-14))
                 i = int(np.clip(np.searchsorted(u, us) - 1, 0, n - 2))
-                c, r, ga, gb = at(us, level, i)
-                cuts.append((us, "level", c, level, ga, gb))
+                c, r, ga, gb = at(us, None, i)
+                cuts.append((us, "level", c, r, ga, gb))
     if b.start is None:  # closed: cut in two at the middle sample
         i = n // 2
         cuts.append((float(u[i]), "split", ca[i], float(rad[i]), fa[i], fb[i]))

@@ -185,6 +185,63 @@ class ComplexBuilder:
         self.faces.append(face)
         return face
 
+    def grid_face(
+        self,
+        poles: FloatArray,
+        u_knots: FloatArray,
+        v_knots: FloatArray,
+        du: int,
+        dv: int,
+        bottom_key: Hashable,
+        top_key: Hashable,
+    ) -> TopoDS_Face:
+        """A face on a tensor B-spline surface ``poles (nu, nv, 3)``; ``v = 0``/``v = 1``
+        rows are the shared curve edges ``bottom_key``/``top_key``, the ``u = 0``/``u = 1``
+        sides are shared by their geometry (end vertices and middle pole)."""
+        nu, nv = poles.shape[:2]
+        with occ_guard("building a medial sheet"):
+            arr = TColgp_Array2OfPnt(1, nu, 1, nv)
+            for i in range(nu):
+                for j in range(nv):
+                    arr.SetValue(i + 1, j + 1, _pnt(poles[i, j]))
+            uk, um = _knots_mults(u_knots)
+            vk, vm = _knots_mults(v_knots)
+            surf = Geom_BSplineSurface(arr, uk, vk, um, vm, du, dv)
+            face = TopoDS_Face()
+            self.builder.MakeFace(face, surf, TopLoc_Location(), self.tol)
+            wire = TopoDS_Wire()
+            self.builder.MakeWire(wire)
+            bottom = Row(bottom_key, u_knots, poles[:, 0], du)
+            top = Row(top_key, u_knots, poles[:, -1], du)
+            b00 = self.vertex(poles[0, 0])
+            t11 = self.vertex(poles[-1, -1])
+            self._row_side(wire, face, bottom, 0.0, forward=True, v_from=b00)
+            self._col_side(wire, face, 1.0, Row(None, v_knots, poles[-1], dv), up=True)
+            self._row_side(wire, face, top, 1.0, forward=False, v_from=t11)
+            self._col_side(wire, face, 0.0, Row(None, v_knots, poles[0], dv), up=False)
+            self.builder.Add(face, wire)
+        self.faces.append(face)
+        return face
+
+    def _col_side(self, wire: TopoDS_Wire, face: TopoDS_Face, u: float, col: Row, *, up: bool) -> None:
+        """The side ``u = const`` (poles from ``v = 0`` to ``v = 1``), traversed up or down."""
+        v0, v1 = self.vertex(col.poles[0]), self.vertex(col.poles[-1])
+        if self.is_degenerate(col):
+            pc = Geom2d_Line(gp_Pnt2d(u, 0.0 if up else 1.0), gp_Dir2d(0.0, 1.0 if up else -1.0))
+            self._degenerate(wire, face, pc, v0)
+            return
+        mid = col.poles[len(col.poles) // 2]
+        key = ("side", min(v0, v1), max(v0, v1), tuple(np.round(mid / (100 * self.merge)).astype(int)))
+        e = self.curve_edges.get(key)
+        if e is None:
+            e = self.curve_edge(Row(key, col.knots, col.poles, col.degree))
+        same = e.v0 == v0  # the edge runs v = 0 -> 1 on this face
+        pc = Geom2d_Line(gp_Pnt2d(u, 0.0 if same else 1.0), gp_Dir2d(0.0, 1.0 if same else -1.0))
+        self.builder.UpdateEdge(e.edge, pc, face, self.tol)
+        self.builder.Range(e.edge, face, 0.0, 1.0)
+        forward = same == up
+        self.builder.Add(wire, e.edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
+
     def _row_side(
         self, wire: TopoDS_Wire, face: TopoDS_Face, row: Row, v: float, *, forward: bool, v_from: int
     ) -> None:

@@ -1,0 +1,306 @@
+"""The 3D MAT of a revolution (THEORY.md Sec. 2), as tensor B-spline patches.
+
+Canonical coordinates: a profile point is ``q = (x, y)`` (``x`` the distance from the
+axis, ``y`` along it) and ``X(q, phi) = O + y D + x (cos(phi) A + sin(phi) B)`` with the
+reading's frame (``A = xdir``, ``D = ydir`` = axis, ``B = D x A``).
+
+Per segment of the 2D MAT (``sigma = sin(Theta/2)``, ``Theta`` the angle):
+
+- low (``r < x sigma`` or ``Theta > pi``): the revolved sheet ``X(c, phi)``,
+  ``asin(r/x) <= phi <= Theta - asin(r/x)``; on each side a start cap sheet
+  ``X(q, asin(d(q)/x))`` over the ruling ``q = f + v (c - f)`` (``d = v r``) and the
+  mirrored end cap sheet;
+- high (small angles): the caps stop on the level curve ``d(q) = x sigma`` at
+  ``phi = Theta/2``, which bounds the planar mid sheet;
+- full revolutions: the revolved sheets only (in four quarter turns), no caps; a profile
+  on the axis is first mirrored across it and the MAT of the whole meridian section is
+  revolved (its parts on the axis stay curves).
+
+Every patch interpolates an exact grid of points; patches that meet share the grid
+samples of their common side, hence one edge.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.interpolate import make_interp_spline
+
+from medialcad.errors import UnsupportedSolidError
+from medialcad.mat2d.graph import NodeKind
+from medialcad.mat3d.segments import Segment, split_branches
+from medialcad.recognition import Revolution
+
+__all__ = ["revolution_parts"]
+
+FloatArray = NDArray[np.float64]
+_LINEAR = np.array([0.0, 0.0, 1.0, 1.0])
+
+
+@dataclass(frozen=True)
+class GridPatch:
+    role: str
+    w: FloatArray  # (nu,)
+    v: FloatArray  # (nv,)
+    points: FloatArray  # (nu, nv, 3)
+    radius: FloatArray  # (nu, nv)
+    bottom_key: tuple
+    top_key: tuple
+    left: tuple[str | None, float]  # (role of the u = 0 side, its radius)
+    right: tuple[str | None, float]
+
+
+class _Canon:
+    """Face-frame 2D <-> canonical (x, y) and canonical (x, y, phi) -> model space."""
+
+    def __init__(self, reading: Revolution, frame2d: Any) -> None:
+        f = reading.frame
+        self.O, self.A, self.D = f.origin, f.xdir, f.ydir
+        self.B = np.cross(self.D, self.A)
+        o2 = frame2d.origin - self.O
+        self.M = np.array(
+            [[frame2d.xdir @ self.A, frame2d.ydir @ self.A], [frame2d.xdir @ self.D, frame2d.ydir @ self.D]]
+        )
+        self.t = np.array([o2 @ self.A, o2 @ self.D])
+
+    def xy(self, p: FloatArray) -> FloatArray:
+        return np.asarray(np.asarray(p) @ self.M.T + self.t)
+
+    def model(self, q: FloatArray, phi: FloatArray) -> FloatArray:
+        q = np.asarray(q, dtype=float)
+        phi = np.asarray(phi, dtype=float)
+        x, y = q[..., 0:1], q[..., 1:2]
+        c, s = np.cos(phi)[..., None], np.sin(phi)[..., None]
+        return np.asarray(self.O + y * self.D + x * (c * self.A + s * self.B))
+
+
+def _nv(span: float, x: float, tol: float) -> int:
+    """Samples across an angular span so that cubic interpolation of a circle of radius
+    ``x`` stays within ``tol`` (error about ``x step^4 / 384``)."""
+    if span <= 0 or x <= 0:
+        return 4
+    step = (384.0 * tol / max(x, 1e-300)) ** 0.25
+    return int(np.clip(math.ceil(span / max(step, 1e-3)), 3, 200)) + 1
+
+
+def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -> tuple:
+    """Sheets, seams, skeletal edges, rims, junctions and the compound of a revolution."""
+    full = reading.full
+    if reading.touches_axis and not full:
+        raise UnsupportedSolidError(
+            "a partial revolution of a profile that touches its axis (a pie slice) is not "
+            "supported"
+        )
+    if reading.touches_axis:
+        from medialcad.api import medial_axis_2d
+        from medialcad.occ.recognize import mirrored_section
+
+        mat2d = medial_axis_2d(mirrored_section(reading), tol=tol)
+    cn = _Canon(reading, mat2d.frame)
+    theta = reading.angle
+    sigma = math.sin(theta / 2.0)
+    mid = not full and theta <= math.pi
+    graph, boundary = mat2d.graph, mat2d.boundary
+
+    def g_level(c: FloatArray, r: FloatArray) -> FloatArray:
+        x = cn.xy(c)[:, 0]
+        return np.asarray(r - x * sigma)
+
+    def g_axis(c: FloatArray, r: FloatArray) -> FloatArray:
+        x = cn.xy(c)[:, 0]
+        return np.asarray(np.where(np.abs(x) < 1e-9 * diag, 0.0, x))
+
+    level = g_level if mid and mat2d.rmax > 0 else (g_axis if reading.touches_axis else None)
+    segments = split_branches(graph, boundary, level)
+    # one angular sampling for all patches, so that shared sides get identical samples
+    xs = [np.abs(cn.xy(s.centre)[:, 0]).max() for s in segments] + [1e-300]
+    xf = [np.abs(cn.xy(np.vstack([s.foot_a, s.foot_b]))[:, 0]).max() for s in segments] + [1e-300]
+    xmax = float(max(max(xs), max(xf)))
+    # revolved sheets end on rims (circles of the solid's convex edges): keep those far
+    # inside the solid's own tolerance; caps only need a fraction of tol
+    nv_rev = _nv(math.pi / 2 if full else theta, xmax, 1e-3 * tol)
+    nv_cap = max(_nv(math.pi / 2 if theta > math.pi else theta / 2, xmax, 0.05 * tol), 5)
+    grids: list[GridPatch] = []
+    offsets: list[tuple] = []
+    junctions: list[tuple[FloatArray, float]] = []
+    axis_lines: list[tuple[FloatArray, FloatArray, FloatArray]] = []
+    for si, s in enumerate(segments):
+        c = cn.xy(s.centre)
+        r = s.radius
+        if reading.touches_axis:
+            xm = float(np.median(c[:, 0]))
+            if float(np.abs(c[:, 0]).max()) <= 10 * tol:  # on the axis: a curve of the MAT
+                if not s.single:
+                    axis_lines.append((cn.model(c, np.zeros(len(c))), r, s.w))
+                continue
+            if xm < 0:
+                continue
+            c[:, 0] = np.maximum(c[:, 0], 0.0)
+        fa, fb = cn.xy(s.foot_a), cn.xy(s.foot_b)
+        if full:
+            if not s.single:
+                _full_sheets(grids, cn, si, s, c, r, nv_rev)
+            continue
+        high = mid and float(np.median(r - c[:, 0] * sigma)) > 0
+        if not high:
+            _revolved_sheet(grids, junctions, cn, si, s, c, r, theta, nv_rev)
+        sides = (("a", fa), ("b", fb))[: 1 if s.single else 2]
+        for side, f in sides:
+            _cap_sheets(grids, offsets, cn, si, side, s, c, f, r, theta, sigma, high, nv_cap)
+    used = {n for b in graph.branches for n in (b.start, b.end) if n is not None}
+    for nd in graph.nodes:
+        if nd.index in used or nd.kind is not NodeKind.CURVATURE_CENTRE:
+            continue
+        c = cn.xy(nd.point_2d[None, :])[0]
+        r = float(nd.radius)
+        if abs(c[0]) <= 10 * tol:  # a ball centred on the axis (a sphere): one point
+            junctions.append((cn.model(np.array([0.0, c[1]]), np.array(0.0)), r))
+            continue
+        if c[0] < 0:
+            continue
+        if full:
+            lo, hi = 0.0, 2 * math.pi
+        elif not mid or r < c[0] * sigma:
+            phi0 = math.asin(min(r / c[0], 1.0))
+            lo, hi = phi0, theta - phi0
+        else:
+            continue
+        pieces = max(1, math.ceil((hi - lo) / (math.pi / 2)))
+        for k in range(pieces):
+            a = lo + (hi - lo) * k / pieces
+            b = lo + (hi - lo) * (k + 1) / pieces
+            w = np.linspace(0.0, 1.0, nv_rev)
+            pts = cn.model(np.broadcast_to(c, (nv_rev, 2)), a + w * (b - a))
+            axis_lines.append((pts, np.full(nv_rev, r), w))
+    from medialcad.mat3d.assemble import build_grid_complex
+
+    mid_plane = None
+    if mid and offsets:
+        a_mid = math.cos(theta / 2) * cn.A + math.sin(theta / 2) * cn.B
+        mid_plane = (cn.O, a_mid, cn.D)
+    return build_grid_complex(
+        grids, offsets, junctions, axis_lines, diag=diag, mid_plane=mid_plane, seam_roles=_roles
+    )
+
+
+def _roles(key: tuple) -> str | None:
+    return {"SB": "seam", "ST": "seam", "OFF": "seam", "F0": "rim", "FL": "rim"}.get(key[0])
+
+
+def _end_role(s: Segment, which: int) -> str | None:
+    end = s.start if which == 0 else s.end
+    if end.kind != "node":
+        return None
+    return {
+        NodeKind.BRANCH_POINT: "seam",
+        NodeKind.CURVATURE_CENTRE: "skeletal",
+        NodeKind.CONVEX_VERTEX: "rim",
+    }[end.node_kind] if end.node_kind is not None else None
+
+
+def _revolved_sheet(
+    grids: list[GridPatch],
+    junctions: list[tuple[FloatArray, float]],
+    cn: _Canon,
+    si: int,
+    s: Segment,
+    c: FloatArray,
+    r: FloatArray,
+    theta: float,
+    nv: int,
+) -> None:
+    x = np.maximum(c[:, 0], 1e-300)
+    phi0 = np.arcsin(np.clip(r / x, 0.0, 1.0))
+    span = np.maximum(theta - 2 * phi0, 0.0)
+    v = np.linspace(0.0, 1.0, nv)
+    phi = phi0[:, None] + v[None, :] * span[:, None]
+    pts = cn.model(np.broadcast_to(c[:, None, :], (len(c), nv, 2)), phi)
+    rad = np.broadcast_to(r[:, None], (len(c), nv)).copy()
+    grids.append(
+        GridPatch(
+            "revolved", s.w, v, pts, rad, ("SB", si), ("ST", si),
+            (_end_role(s, 0), float(r[0])), (_end_role(s, 1), float(r[-1])),
+        )
+    )
+    for i, end in ((0, s.start), (-1, s.end)):
+        if end.kind == "node" and end.node_kind is NodeKind.BRANCH_POINT:
+            junctions.append((pts[i, 0], float(r[i])))
+            junctions.append((pts[i, -1], float(r[i])))
+        elif end.kind == "level":
+            junctions.append((pts[i, 0], float(r[i])))
+
+
+def _full_sheets(
+    grids: list[GridPatch], cn: _Canon, si: int, s: Segment, c: FloatArray, r: FloatArray, nv: int
+) -> None:
+    quarters = np.linspace(0.0, 2.0 * math.pi, 5)
+    v = np.linspace(0.0, 1.0, nv)
+    for k in range(4):
+        phi = quarters[k] + v * (quarters[k + 1] - quarters[k])
+        pts = cn.model(np.broadcast_to(c[:, None, :], (len(c), nv, 2)), np.broadcast_to(phi, (len(c), nv)))
+        rad = np.broadcast_to(r[:, None], (len(c), nv)).copy()
+        grids.append(
+            GridPatch(
+                "revolved", s.w, v, pts, rad, ("ROW", si, k), ("ROW", si, (k + 1) % 4),
+                (_end_role(s, 0), float(r[0])), (_end_role(s, 1), float(r[-1])),
+            )
+        )
+
+
+def _cap_sheets(
+    grids: list[GridPatch],
+    offsets: list[tuple],
+    cn: _Canon,
+    si: int,
+    side: str,
+    s: Segment,
+    c: FloatArray,
+    f: FloatArray,
+    r: FloatArray,
+    theta: float,
+    sigma: float,
+    high: bool,
+    nv: int,
+) -> None:
+    n = len(c)
+    if high:
+        # v* where the ruling meets the level curve d = x sigma
+        den = r - (c[:, 0] - f[:, 0]) * sigma
+        vstar = np.clip(f[:, 0] * sigma / np.where(np.abs(den) > 1e-300, den, 1e-300), 0.0, 1.0)
+        for i, end in ((0, s.start), (-1, s.end)):
+            if end.kind == "level":
+                vstar[i] = 1.0
+    else:
+        vstar = np.ones(n)
+    v = np.linspace(0.0, 1.0, nv)
+    vv = v[None, :] * vstar[:, None]  # (n, nv) position along the ruling
+    q = f[:, None, :] + vv[..., None] * (c - f)[:, None, :]
+    if not high:
+        q[:, -1, :] = c
+    d = vv * r[:, None]
+    x = np.maximum(q[..., 0], 1e-300)
+    phi = np.arcsin(np.clip(d / x, 0.0, 1.0))
+    if high:
+        phi[:, -1] = theta / 2.0
+    for cap, ph, rim_key, top_key in (
+        ("start", phi, ("F0", si, side), ("SB", si) if not high else ("OFF", si, side)),
+        ("end", theta - phi, ("FL", si, side), ("ST", si) if not high else ("OFF", si, side)),
+    ):
+        pts = cn.model(q, ph)
+        grids.append(GridPatch("cap", s.w, v, pts, d, rim_key, top_key, (None, 0.0), (None, 0.0)))
+        del cap
+    if high:
+        offsets.append(("OFF", si, side))
+
+
+def interp_grid(w: FloatArray, v: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArray, int, int, FloatArray]:
+    """Tensor interpolation: knots in u and v, degrees, poles."""
+    ku = int(min(3, len(w) - 1))
+    kv = int(min(3, len(v) - 1))
+    su = make_interp_spline(w, values, k=ku, axis=0)
+    sv = make_interp_spline(v, su.c, k=kv, axis=1)  # its coefficients come axis-first
+    return np.asarray(su.t), np.asarray(sv.t), ku, kv, np.moveaxis(np.asarray(sv.c), 0, 1)
