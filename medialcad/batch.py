@@ -42,7 +42,17 @@ from typing import Any
 
 from medialcad.errors import InputError, MedialCadError, ReadError
 
-__all__ = ["Job", "find_inputs", "main", "plan_jobs", "process_file"]
+__all__ = [
+    "Job",
+    "find_inputs",
+    "format_table",
+    "main",
+    "plan_jobs",
+    "process_file",
+    "run_dask",
+    "run_local",
+    "up_to_date",
+]
 
 log = logging.getLogger(__name__)
 
@@ -203,14 +213,17 @@ _CRASH = "the worker process died (crash in native code, or killed)"
 # --------------------------------------------------------------------------- runners
 
 OnDone = Callable[[dict[str, Any]], None]
+Worker = Callable[[Job], dict[str, Any]]
 
 
-def run_local(jobs: list[Job], workers: int, on_done: OnDone) -> None:
+def run_local(
+    jobs: list[Job], workers: int, on_done: OnDone, fn: Worker = process_file
+) -> None:
     """Run ``jobs`` on a pool of ``workers`` processes (spawned: no fork of OCC state).
 
     At most ``workers`` jobs are in flight, so when a worker dies only those are suspects:
     each is rerun alone in a fresh process (a crash there fails that file only), and the
-    queue goes on in a new pool.
+    queue goes on in a new pool. ``fn`` (module-level, picklable) is run on each job.
     """
     ctx = multiprocessing.get_context("spawn")
     queue = deque(jobs)
@@ -224,7 +237,7 @@ def run_local(jobs: list[Job], workers: int, on_done: OnDone) -> None:
                 while queue and not broken and len(running) < workers:
                     job = queue.popleft()
                     try:
-                        running[pool.submit(process_file, job)] = job
+                        running[pool.submit(fn, job)] = job
                     except BrokenProcessPool:
                         queue.appendleft(job)
                         broken = True
@@ -244,15 +257,15 @@ def run_local(jobs: list[Job], workers: int, on_done: OnDone) -> None:
         pool.shutdown(wait=True)
         if suspects:
             log.warning("a worker died; rerunning %d file(s) one per process", len(suspects))
-            _run_isolated(suspects, ctx, on_done)
+            _run_isolated(suspects, ctx, on_done, fn)
 
 
-def _run_isolated(jobs: list[Job], ctx: Any, on_done: OnDone) -> None:
+def _run_isolated(jobs: list[Job], ctx: Any, on_done: OnDone, fn: Worker) -> None:
     """Each job in its own one-worker pool (all at once: at most ``--jobs`` of them)."""
     pools = [ProcessPoolExecutor(max_workers=1, mp_context=ctx) for _ in jobs]
     try:
         futures = [
-            (job, pool.submit(process_file, job)) for job, pool in zip(jobs, pools, strict=True)
+            (job, pool.submit(fn, job)) for job, pool in zip(jobs, pools, strict=True)
         ]
         for job, fut in futures:
             try:

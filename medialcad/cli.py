@@ -275,7 +275,7 @@ def _recognition_fields(mat: Any) -> dict[str, Any]:
 
 
 def _floats(v: Any) -> list[float]:
-    return [float(x) for x in v]
+    return [float(x) + 0.0 for x in v]  # + 0.0: no -0.0
 
 
 def _solve_solid(
@@ -325,8 +325,6 @@ def _describe(err: BaseException) -> str:
 
 def _solid_line(entry: dict[str, Any], count: int) -> str:
     head = f"solid {entry['index']} of {count}"
-    if entry["status"] != "ok":
-        return f"{head}: {entry['status']}: {entry['error']}"
     c = entry["counts"]
     if entry["kind"] == "extrusion":
         d = ", ".join(f"{x:.4g}" for x in entry["direction"])
@@ -366,7 +364,7 @@ def _convert_solids(
         "options": {"tol": tol, "format": fmt},
         "solids": entries,
     }
-    lines = [_solid_line(e, n) for e in entries]
+    lines = [_solid_line(e, n) for e in entries if e["status"] == "ok"]
     bad = [e for e in entries if e["status"] != "ok"]
     report["status"] = (
         "ok" if not bad else ("refused" if any(e["status"] == "refused" for e in bad) else "failed")

@@ -322,7 +322,7 @@ def tessellate(
 
     shape = as_topods(solid) if solid is not None else getattr(result.recognition, "solid", None)
     diag = _bbox_diag(shape) if shape is not None else _bbox_diag(result.compound)
-    deflection, angle, max_len = 5e-3 * diag, 0.3, diag / 40.0
+    deflection, angle, max_len = 1e-2 * diag, 0.3, diag / 40.0
     # refinement of long sheet triangles gets at most a third of the budget
     cap = max(max_triangles // (3 * max(len(result.sheets), 1)), 8)
     decimated = False

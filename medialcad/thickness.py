@@ -70,7 +70,7 @@ _R_FLOOR = 10.0
 """Balls smaller than this many tolerances are not walls: their touch directions cannot be
 resolved on the fitted geometry (knife edges read as about ``20 tol`` thick)."""
 _GOLDEN_DIRS = 120  # directions probed around a junction
-_CONE_DIRS = 72  # directions probed on the cone of a curve point
+_CONE_DIRS = 36  # directions probed on the cone of a curve point
 
 
 @dataclass(frozen=True)
@@ -172,6 +172,12 @@ def wall_thickness(
                 _Best(float(rad[k]), pts[k], sheet.name, ("sheet", i, uu[k], vv[k], du, dv))
             )
 
+    # curves and junctions: probe the solid in order of increasing radius, only while
+    # the radius is below the best wall found so far (the first wall found is the least)
+    probes: list[
+        tuple[float, FloatArray, str, tuple[Any, ...], FloatArray | None, float, bool]
+    ] = []
+    n_seams = len(result.seams)
     for i, curve in enumerate(result.seams + result.skeletal_edges):
         c = _CurveSampler(curve)
         ts = np.linspace(c.t0, c.t1, max(samples // 2, 5))
@@ -179,24 +185,23 @@ def wall_thickness(
         k = int(np.argmax(rad))
         dt = float(ts[1] - ts[0])
         hi_cands.append(_Best(float(rad[k]), pts[k], curve.name, ("curve", i, ts[k], dt)))
-        if prober is None:
-            continue
-        for j in np.argsort(rad):
-            if rad[j] <= r_floor:
-                continue
-            if prober.is_wall(pts[j], float(rad[j]), cos_lim, tang[j], float(slope[j])):
-                lo_cands.append(_Best(float(rad[j]), pts[j], curve.name, ("curve", i, ts[j], dt)))
-                break
-
+        for j in range(len(ts)):
+            key = ("curve", i, ts[j], dt)
+            probes.append(
+                (float(rad[j]), pts[j], curve.name, key, tang[j], float(slope[j]), i >= n_seams)
+            )
     for jn in result.junctions:
         p = np.asarray(jn.point, dtype=float)
         hi_cands.append(_Best(float(jn.radius), p, jn.name, ("point",)))
-        if (
-            prober is not None
-            and jn.radius > r_floor
-            and prober.is_wall(p, float(jn.radius), cos_lim, None, 0.0)
-        ):
-            lo_cands.append(_Best(float(jn.radius), p, jn.name, ("point",)))
+        probes.append((float(jn.radius), p, jn.name, ("point",), None, 0.0, True))
+    if prober is not None:
+        bound = min((b.value for b in lo_cands), default=math.inf)
+        for r, p, name, key, tangent, slope, rays in sorted(probes, key=lambda x: x[0]):
+            if r >= bound:
+                break
+            if r > r_floor and prober.is_wall(p, r, cos_lim, tangent, slope, rays=rays):
+                lo_cands.append(_Best(r, p, name, key))
+                break
 
     if not hi_cands:
         raise ValueError("the medial axis has no sheet, curve or junction")
@@ -264,6 +269,7 @@ def _refine(
     if kind == "curve":
         _, i, t, dt = best.key
         c = _CurveSampler((result.seams + result.skeletal_edges)[i])
+        skeletal = i >= len(result.seams)  # seams touch in points: faces' nearest points do
         for _ in range(3):
             ts = np.linspace(max(c.t0, t - dt), min(c.t1, t + dt), 7)
             pts, rad, tang, slope = c.eval(ts)
@@ -273,7 +279,9 @@ def _refine(
                 if maximum or (
                     prober is not None
                     and rad[j] > r_floor
-                    and prober.is_wall(pts[j], float(rad[j]), cos_lim, tang[j], float(slope[j]))
+                    and prober.is_wall(
+                        pts[j], float(rad[j]), cos_lim, tang[j], float(slope[j]), rays=skeletal
+                    )
                 ):
                     best = _Best(float(rad[j]), pts[j], best.entity, best.key)
                     t = float(ts[j])
@@ -298,6 +306,43 @@ class _SheetSampler:
         self.classifier = BRepTopAdaptor_FClass2d(sheet.face, 1e-9)
         span = max(self.u1 - self.u0, self.v1 - self.v0, 1e-300)
         self.eps = 1e-7 * span  # keep off degenerated sides, where the gradient is 0/0
+        self.ruled = self._is_ruled()
+
+    def _is_ruled(self) -> bool:
+        """A B-spline sheet ruled in ``v`` whose face is its whole parameter rectangle
+        (the sewn sheets of :mod:`medialcad.occ.complex`): rows give every point."""
+        from OCP.GeomAbs import GeomAbs_BSplineSurface
+
+        s = self.surf
+        if s.GetType() != GeomAbs_BSplineSurface or s.VDegree() != 1 or s.NbVPoles() != 2:
+            return False
+        full = (s.FirstUParameter(), s.LastUParameter(), s.FirstVParameter(), s.LastVParameter())
+        mine = (self.u0, self.u1, self.v0, self.v1)
+        return all(abs(a - b) <= 1e-9 * (1.0 + abs(a)) for a, b in zip(full, mine, strict=True))
+
+    def _points(
+        self, uu: FloatArray, vv: FloatArray
+    ) -> tuple[FloatArray, FloatArray, FloatArray, NDArray[np.bool_]]:
+        """Points, ``dS/du``, ``dS/dv`` and the inside mask at the parameters."""
+        from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec
+        from OCP.TopAbs import TopAbs_OUT
+
+        n = len(uu)
+        pts = np.zeros((n, 3))
+        su = np.zeros((n, 3))
+        sv = np.zeros((n, 3))
+        inside = np.ones(n, bool)
+        p, a, b = gp_Pnt(), gp_Vec(), gp_Vec()
+        for k in range(n):
+            u, v = float(uu[k]), float(vv[k])
+            if not self.ruled and self.classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
+                inside[k] = False
+                continue
+            self.surf.D1(u, v, p, a, b)
+            pts[k] = (p.X(), p.Y(), p.Z())
+            su[k] = (a.X(), a.Y(), a.Z())
+            sv[k] = (b.X(), b.Y(), b.Z())
+        return pts, su, sv, inside
 
     def grid(
         self,
@@ -311,29 +356,23 @@ class _SheetSampler:
         r_floor: float,
     ) -> tuple[FloatArray, FloatArray, NDArray[np.bool_], FloatArray, FloatArray] | None:
         """``(points, r, wall, u, v)`` of the grid points inside the face, or ``None``."""
-        from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec
-        from OCP.TopAbs import TopAbs_OUT
-
         us = np.linspace(u0, u1, nu)
         vs = np.linspace(v0, v1, nv)
         us = np.clip(us, self.u0 + self.eps, self.u1 - self.eps)
         vs = np.clip(vs, self.v0 + self.eps, self.v1 - self.eps)
         uu, vv = (a.ravel() for a in np.meshgrid(us, vs, indexing="ij"))
-        n = len(uu)
-        pts = np.empty((n, 3))
-        su = np.empty((n, 3))
-        sv = np.empty((n, 3))
-        inside = np.ones(n, bool)
-        p, a, b = gp_Pnt(), gp_Vec(), gp_Vec()
-        for k in range(n):
-            u, v = float(uu[k]), float(vv[k])
-            if self.classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
-                inside[k] = False
-                continue
-            self.surf.D1(u, v, p, a, b)
-            pts[k] = (p.X(), p.Y(), p.Z())
-            su[k] = (a.X(), a.Y(), a.Z())
-            sv[k] = (b.X(), b.Y(), b.Z())
+        if self.ruled:
+            # S(u, v) = B(u) + w (T(u) - B(u)), w = (v - v0) / (v1 - v0): two rows per u
+            rows = np.full(nu, self.v0), np.full(nu, self.v1)
+            pb, db, _, _ = self._points(us, rows[0])
+            pt, dt, _, _ = self._points(us, rows[1])
+            w = ((vs - self.v0) / (self.v1 - self.v0))[None, :, None]
+            pts = (pb[:, None] + w * (pt - pb)[:, None]).reshape(-1, 3)
+            su = (db[:, None] + w * (dt - db)[:, None]).reshape(-1, 3)
+            sv = np.repeat((pt - pb) / (self.v1 - self.v0), nv, axis=0)
+            inside = np.ones(len(uu), bool)
+        else:
+            pts, su, sv, inside = self._points(uu, vv)
         if not inside.any():
             return None
         pts, su, sv, uu, vv = pts[inside], su[inside], sv[inside], uu[inside], vv[inside]
@@ -416,7 +455,7 @@ class _Prober:
             ex.Next()
         self.rays = IntCurvesFace_ShapeIntersector()
         self.rays.Load(solid, max(tol * 1e-3, 1e-9))
-        self.slack = 10.0 * tol
+        self.slack = 3.0 * tol
         self._normals: dict[Any, Any] = {}
         i = np.arange(_GOLDEN_DIRS) + 0.5
         z = 1.0 - 2.0 * i / _GOLDEN_DIRS
@@ -475,7 +514,14 @@ class _Prober:
         return np.array(out).reshape(-1, 3)
 
     def is_wall(
-        self, p: FloatArray, r: float, cos_lim: float, tangent: FloatArray | None, slope: float
+        self,
+        p: FloatArray,
+        r: float,
+        cos_lim: float,
+        tangent: FloatArray | None,
+        slope: float,
+        *,
+        rays: bool = True,
     ) -> bool:
         """Whether two touch points of the ball ``(p, r)`` are more than the limit apart.
 
@@ -484,7 +530,9 @@ class _Prober:
         """
         if r <= 0:
             return False
-        if tangent is None or not np.any(tangent):
+        if not rays:
+            dirs = np.zeros((0, 3))
+        elif tangent is None or not np.any(tangent):
             dirs = self.sphere
         else:
             t = np.asarray(tangent, dtype=float)

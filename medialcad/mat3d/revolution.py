@@ -124,6 +124,16 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     # inside the solid's own tolerance; caps only need a fraction of tol
     nv_rev = _nv(math.pi / 2 if full else theta, xmax, 1e-3 * tol)
     nv_cap = max(_nv(math.pi / 2 if theta > math.pi else theta / 2, xmax, 0.05 * tol), 5)
+    if not full:
+        jobs = []
+        for seg in segments:
+            c = cn.xy(seg.centre)
+            if reading.touches_axis and float(np.median(c[:, 0])) < 0:
+                continue
+            high = mid and float(np.median(seg.radius - c[:, 0] * sigma)) > 0
+            for foot in (seg.foot_a, seg.foot_b)[: 1 if seg.single else 2]:
+                jobs.append((seg, c, cn.xy(foot), seg.radius, theta, sigma, high))
+        nv_cap = _cap_nv(cn, jobs, nv_cap, 0.05 * tol)
     grids: list[GridPatch] = []
     offsets: list[tuple] = []
     junctions: list[tuple[FloatArray, float]] = []
@@ -146,7 +156,7 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
                 _full_sheets(grids, cn, si, s, c, r, nv_rev)
             continue
         high = mid and float(np.median(r - c[:, 0] * sigma)) > 0
-        if not high:
+        if not high and not s.single:
             _revolved_sheet(grids, junctions, cn, si, s, c, r, theta, nv_rev)
         sides = (("a", fa), ("b", fb))[: 1 if s.single else 2]
         for side, f in sides:
@@ -251,6 +261,60 @@ def _full_sheets(
         )
 
 
+def _cap_grid(
+    s: Segment,
+    c: FloatArray,
+    f: FloatArray,
+    r: FloatArray,
+    theta: float,
+    sigma: float,
+    high: bool,
+    v: FloatArray,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Profile points ``q``, angles ``phi`` and distances ``d`` of a start cap grid."""
+    n = len(c)
+    if high:
+        # v* where the ruling meets the level curve d = x sigma
+        den = r - (c[:, 0] - f[:, 0]) * sigma
+        vstar = np.clip(f[:, 0] * sigma / np.where(np.abs(den) > 1e-300, den, 1e-300), 0.0, 1.0)
+        for i, end in ((0, s.start), (-1, s.end)):
+            if end.kind == "level":
+                vstar[i] = 1.0
+    else:
+        vstar = np.ones(n)
+    vv = v[None, :] * vstar[:, None]  # (n, nv) position along the ruling
+    q = f[:, None, :] + vv[..., None] * (c - f)[:, None, :]
+    ends = v[-1] == 1.0  # the last column is the seam or the level curve: exact values
+    if ends and not high:
+        q[:, -1, :] = c
+    d = vv * r[:, None]
+    x = np.maximum(q[..., 0], 1e-300)
+    phi = np.arcsin(np.clip(d / x, 0.0, 1.0))
+    if ends and high:
+        phi[:, -1] = theta / 2.0
+    return q, phi, d
+
+
+def _cap_nv(cn: _Canon, jobs: list[tuple], base: int, tol: float) -> int:
+    """Fewest samples across the caps (one count for all: shared sides) for which cubic
+    interpolation across every cap stays within ``tol`` at the midpoints."""
+    nv = base
+    while nv < 400:
+        v = np.linspace(0.0, 1.0, nv)
+        vm = 0.5 * (v[1:] + v[:-1])
+        worst = 0.0
+        for args in jobs:
+            q, phi, _ = _cap_grid(*args, v)
+            qm, phim, _ = _cap_grid(*args, vm)
+            pts, exact = cn.model(q, phi), cn.model(qm, phim)
+            fit = make_interp_spline(v, pts, k=min(3, nv - 1), axis=1)(vm)
+            worst = max(worst, float(np.linalg.norm(fit - exact, axis=-1).max()))
+        if worst <= tol:
+            return nv
+        nv = 2 * nv - 1
+    return nv
+
+
 def _cap_sheets(
     grids: list[GridPatch],
     offsets: list[tuple],
@@ -266,26 +330,8 @@ def _cap_sheets(
     high: bool,
     nv: int,
 ) -> None:
-    n = len(c)
-    if high:
-        # v* where the ruling meets the level curve d = x sigma
-        den = r - (c[:, 0] - f[:, 0]) * sigma
-        vstar = np.clip(f[:, 0] * sigma / np.where(np.abs(den) > 1e-300, den, 1e-300), 0.0, 1.0)
-        for i, end in ((0, s.start), (-1, s.end)):
-            if end.kind == "level":
-                vstar[i] = 1.0
-    else:
-        vstar = np.ones(n)
     v = np.linspace(0.0, 1.0, nv)
-    vv = v[None, :] * vstar[:, None]  # (n, nv) position along the ruling
-    q = f[:, None, :] + vv[..., None] * (c - f)[:, None, :]
-    if not high:
-        q[:, -1, :] = c
-    d = vv * r[:, None]
-    x = np.maximum(q[..., 0], 1e-300)
-    phi = np.arcsin(np.clip(d / x, 0.0, 1.0))
-    if high:
-        phi[:, -1] = theta / 2.0
+    q, phi, d = _cap_grid(s, c, f, r, theta, sigma, high, v)
     for cap, ph, rim_key, top_key in (
         ("start", phi, ("F0", si, side), ("SB", si) if not high else ("OFF", si, side)),
         ("end", theta - phi, ("FL", si, side), ("ST", si) if not high else ("OFF", si, side)),

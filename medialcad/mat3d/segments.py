@@ -148,6 +148,27 @@ def _project(boundary: Boundary, element: int, c: FloatArray) -> tuple[FloatArra
     return _foot_param(boundary, element, c, float(t[int(np.argmin(d))]))
 
 
+def _project_many(boundary: Boundary, element: int, cs: FloatArray) -> FloatArray:
+    """Nearest points on an element to many centres (vectorised coarse search + Newton)."""
+    e = boundary.elements[element]
+    cs = np.asarray(cs, dtype=float)
+    if e.piece is None:
+        return np.broadcast_to(np.asarray(e.vertex, dtype=float), cs.shape).copy()
+    lo, hi = sorted((e.piece.t0, e.piece.t1))
+    grid = np.linspace(lo, hi, 65)
+    pg = e.piece.curve.point(grid)
+    t = grid[np.argmin(np.linalg.norm(cs[:, None, :] - pg[None, :, :], axis=2), axis=1)]
+    for _ in range(10):
+        p, d1, d2 = e.piece.curve.derivs(t)
+        g = np.einsum("ij,ij->i", p - cs, d1)
+        h = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", p - cs, d2)
+        step = np.where(h > 0, g / np.where(h > 0, h, 1.0), 0.0)
+        t = np.clip(t - step, lo, hi)
+        if np.all(np.abs(step) < 1e-15 * np.maximum(1.0, np.abs(t))):
+            break
+    return np.asarray(e.piece.curve.point(t))
+
+
 def _loop_points(boundary: Boundary, loop: int, s0: float, s1: float, step: float) -> FloatArray:
     """Boundary points on loop coordinates ``s0 -> s1`` (increasing, may pass the seam)."""
     length = boundary.loop_lengths[loop]
@@ -400,8 +421,8 @@ def _refine(
         fit_a = make_interp_spline(w, foot_a, k=k)(wm)
         fit_b = make_interp_spline(w, foot_b, k=k)(wm)
         ex = sp(u0 + wm * span)  # type: ignore[operator]
-        ex_a = np.array([_project(boundary, el_a, c)[0] for c in ex[:, :2]])
-        ex_b = np.array([_project(boundary, el_b, c)[0] for c in ex[:, :2]])
+        ex_a = _project_many(boundary, el_a, ex[:, :2])
+        ex_b = _project_many(boundary, el_b, ex[:, :2])
         bad = (np.linalg.norm(fit_c - ex, axis=1) > 0.1 * tol)
         bad |= np.linalg.norm(fit_a - ex_a, axis=1) > 0.02 * tol
         bad |= np.linalg.norm(fit_b - ex_b, axis=1) > 0.02 * tol

@@ -51,7 +51,7 @@ def medial_axis_of(
         raise ComputationError(f"3D medial axis failed: {type(err).__name__}: {err}") from err
     timings["mat3d"] = time.perf_counter() - t0
     sheets, seams, skeletal, rims, junctions, comp = parts
-    if not sheets and not seams and not skeletal:
+    if not sheets and not seams and not skeletal and not junctions:
         raise UnsupportedSolidError("the medial axis of this solid came out empty")
     return MedialAxis3D(
         reading.kind, reading, mat2d, tol_abs, sheets, seams, junctions, skeletal, rims, comp, timings
