@@ -27,8 +27,15 @@ def build_complex(
     diag: float,
     mid_plane: tuple[FloatArray, FloatArray, FloatArray] | None,
     mid_radius: float = 0.0,
-    seam_roles: Callable[[tuple], str | None],
-) -> tuple[tuple[Sheet, ...], tuple[Seam, ...], tuple[Seam, ...], tuple[Seam, ...], tuple[Junction, ...], Any]:
+    seam_roles: Callable[[Any], str | None],
+) -> tuple[
+    tuple[Sheet, ...],
+    tuple[Seam, ...],
+    tuple[Seam, ...],
+    tuple[Seam, ...],
+    tuple[Junction, ...],
+    Any,
+]:
     """Build faces/edges/vertices; return sheets, seams, skeletal edges, rims, junctions
     and the compound.
 
@@ -39,20 +46,36 @@ def build_complex(
 
     cb = ComplexBuilder(merge=1e-9 * diag, tol=max(1e-7 * diag, 1e-9))
     sheets: list[Sheet] = []
-    row_radius: dict[tuple, tuple[FloatArray, int, FloatArray]] = {}
+    row_radius: dict[Any, tuple[FloatArray, int, FloatArray]] = {}
     for p in patches:
         bottom = Row(p.bottom.key, p.knots, p.bottom.poles, p.degree)
         top = Row(p.top.key, p.knots, p.top.poles, p.degree)
         face = cb.ruled_face(bottom, top)
         sheets.append(
-            Sheet(f"sheet-{len(sheets) + 1}", face, p.role, p.knots, p.degree, p.bottom.radius, p.top.radius)
+            Sheet(
+                f"sheet-{len(sheets) + 1}",
+                face,
+                p.role,
+                p.knots,
+                p.degree,
+                p.bottom.radius,
+                p.top.radius,
+            )
         )
         for r in (p.bottom, p.top):
             row_radius.setdefault(r.key, (p.knots, p.degree, r.radius))
     if mid_plane is not None and offsets:
         for face in cb.planar_faces(offsets, *mid_plane):
             sheets.append(
-                Sheet(f"sheet-{len(sheets) + 1}", face, "mid", _LINEAR, 1, np.array([mid_radius] * 2), np.array([mid_radius] * 2))
+                Sheet(
+                    f"sheet-{len(sheets) + 1}",
+                    face,
+                    "mid",
+                    _LINEAR,
+                    1,
+                    np.array([mid_radius] * 2),
+                    np.array([mid_radius] * 2),
+                )
             )
     seams: list[Seam] = []
     skeletal: list[Seam] = []
@@ -74,17 +97,28 @@ def build_complex(
             continue
         target = {"seam": seams, "skeletal": skeletal, "rim": rims}[ln.role]
         target.append(Seam("", e.edge, ln.role, _LINEAR, 1, np.array([ln.radius, ln.radius])))
-    seams = [Seam(f"seam-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(seams)]
-    skeletal = [Seam(f"skeletal-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(skeletal)]
-    rims = [Seam(f"rim-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(rims)]
+    seams = [
+        Seam(f"seam-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
+        for i, s in enumerate(seams)
+    ]
+    skeletal = [
+        Seam(f"skeletal-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
+        for i, s in enumerate(skeletal)
+    ]
+    rims = [
+        Seam(f"rim-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
+        for i, s in enumerate(rims)
+    ]
     juncs: list[Junction] = []
     seen: set[int] = set()
-    for p, r in junctions:
-        vi = cb.vertex(p)
+    for jp, jr in junctions:
+        vi = cb.vertex(jp)
         if vi in seen:
             continue
         seen.add(vi)
-        juncs.append(Junction(f"junction-{len(juncs) + 1}", cb.vertices[vi], cb.points[vi], float(r)))
+        juncs.append(
+            Junction(f"junction-{len(juncs) + 1}", cb.vertices[vi], cb.points[vi], float(jr))
+        )
     extra = [s.edge for s in skeletal if not _in_faces(cb, s.edge)]
     comp = cb.compound(extra)
     return tuple(sheets), tuple(seams), tuple(skeletal), tuple(rims), tuple(juncs), comp
@@ -116,7 +150,7 @@ def build_grid_complex(
     *,
     diag: float,
     mid_plane: tuple[FloatArray, FloatArray, FloatArray] | None,
-    seam_roles: Callable[[tuple], str | None],
+    seam_roles: Callable[[Any], str | None],
 ) -> tuple:
     """Like :func:`build_complex` for tensor patches (revolutions)."""
     from medialcad.mat3d.revolution import interp_grid
@@ -124,7 +158,7 @@ def build_grid_complex(
 
     cb = ComplexBuilder(merge=1e-9 * diag, tol=max(1e-7 * diag, 1e-9))
     sheets: list[Sheet] = []
-    row_radius: dict[tuple, tuple[FloatArray, int, FloatArray]] = {}
+    row_radius: dict[Any, tuple[FloatArray, int, FloatArray]] = {}
     named_sides: list[tuple[Any, str, float]] = []
     mid_radius = 0.0
     for g in grids:
@@ -133,8 +167,16 @@ def build_grid_complex(
         face = cb.grid_face(poles, tu, tv, ku, kv, g.bottom_key, g.top_key)
         sheets.append(
             Sheet(
-                f"sheet-{len(sheets) + 1}", face, g.role, tu, ku,
-                rpoles[:, 0], rpoles[:, -1], tv, kv, rpoles,
+                f"sheet-{len(sheets) + 1}",
+                face,
+                g.role,
+                tu,
+                ku,
+                rpoles[:, 0],
+                rpoles[:, -1],
+                tv,
+                kv,
+                rpoles,
             )
         )
         row_radius.setdefault(g.bottom_key, (tu, ku, rpoles[:, 0]))
@@ -146,23 +188,36 @@ def build_grid_complex(
                 continue
             v0, v1 = cb.vertex(col[0]), cb.vertex(col[-1])
             mid = col[len(col) // 2]
-            key = ("side", min(v0, v1), max(v0, v1), tuple(np.round(mid / (100 * cb.merge)).astype(int)))
+            key = (
+                "side",
+                min(v0, v1),
+                max(v0, v1),
+                tuple(np.round(mid / (100 * cb.merge)).astype(int)),
+            )
             e = cb.curve_edges.get(key)
             if e is not None:
                 named_sides.append((e.edge, role, rad))
     if mid_plane is not None and offsets:
         for face in cb.planar_faces(offsets, *mid_plane):
             sheets.append(
-                Sheet(f"sheet-{len(sheets) + 1}", face, "mid", _LINEAR, 1, np.array([mid_radius] * 2), np.array([mid_radius] * 2))
+                Sheet(
+                    f"sheet-{len(sheets) + 1}",
+                    face,
+                    "mid",
+                    _LINEAR,
+                    1,
+                    np.array([mid_radius] * 2),
+                    np.array([mid_radius] * 2),
+                )
             )
     seams: list[Seam] = []
     skeletal: list[Seam] = []
     rims: list[Seam] = []
-    for key, e in cb.curve_edges.items():
-        role = seam_roles(key) if key[0] != "side" else None
+    for ckey, e in cb.curve_edges.items():
+        role = seam_roles(ckey) if ckey[0] != "side" else None  # type: ignore[index]
         if role is None:
             continue
-        knots, degree, rad = row_radius[key]
+        knots, degree, rad = row_radius[ckey]
         (seams if role == "seam" else rims).append(Seam("", e.edge, role, knots, degree, rad))
     seen: list[Any] = []
     for edge, role, rad in named_sides:
@@ -183,9 +238,18 @@ def build_grid_complex(
         extra.append(e.edge)
         skeletal.append(Seam("", e.edge, "skeletal", np.asarray(sr.t), k, np.asarray(sr.c)))
     del bspline
-    seams = [Seam(f"seam-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(seams)]
-    skeletal = [Seam(f"skeletal-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(skeletal)]
-    rims = [Seam(f"rim-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles) for i, s in enumerate(rims)]
+    seams = [
+        Seam(f"seam-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
+        for i, s in enumerate(seams)
+    ]
+    skeletal = [
+        Seam(f"skeletal-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
+        for i, s in enumerate(skeletal)
+    ]
+    rims = [
+        Seam(f"rim-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
+        for i, s in enumerate(rims)
+    ]
     juncs: list[Junction] = []
     seen_v: set[int] = set()
     for p, r in junctions:
@@ -193,7 +257,9 @@ def build_grid_complex(
         if vi in seen_v:
             continue
         seen_v.add(vi)
-        juncs.append(Junction(f"junction-{len(juncs) + 1}", cb.vertices[vi], cb.points[vi], float(r)))
+        juncs.append(
+            Junction(f"junction-{len(juncs) + 1}", cb.vertices[vi], cb.points[vi], float(r))
+        )
     loose = [e for e in extra if not _used(cb, e)]
     if not cb.faces and not loose:
         loose = [j.vertex for j in juncs]

@@ -96,7 +96,9 @@ def extrusion_rows(
         r = s.radius
         high = high_level is not None and float(np.median(r)) > high_level
         if not high:
-            t, k, (cc, fa, fb) = interp_rows(s.w, np.column_stack([s.centre, r]), s.foot_a, s.foot_b)
+            t, k, (cc, fa, fb) = interp_rows(
+                s.w, np.column_stack([s.centre, r]), s.foot_a, s.foot_b
+            )
             cr = cc[:, 2]
             zero = np.zeros(len(cr))
             sb = RowData(("SB", si), to_model(cc), cr)
@@ -105,7 +107,9 @@ def extrusion_rows(
                 patches.append(PatchRows("vertical", si, t, k, sb, st))
             for side, f in (("a", fa), ("b", fb))[: 1 if s.single else 2]:
                 bot = RowData(("F0", si, side), to_model(np.column_stack([f, zero])), zero)
-                top = RowData(("FL", si, side), to_model(np.column_stack([f, np.full(len(cr), L)])), zero)
+                top = RowData(
+                    ("FL", si, side), to_model(np.column_stack([f, np.full(len(cr), L)])), zero
+                )
                 patches.append(PatchRows("cap", si, t, k, bot, sb))
                 patches.append(PatchRows("cap", si, t, k, top, st))
             for end, i in ((s.start, 0), (s.end, -1)):

@@ -63,7 +63,10 @@ class _Canon:
         self.B = np.cross(self.D, self.A)
         o2 = frame2d.origin - self.O
         self.M = np.array(
-            [[frame2d.xdir @ self.A, frame2d.ydir @ self.A], [frame2d.xdir @ self.D, frame2d.ydir @ self.D]]
+            [
+                [frame2d.xdir @ self.A, frame2d.ydir @ self.A],
+                [frame2d.xdir @ self.D, frame2d.ydir @ self.D],
+            ]
         )
         self.t = np.array([o2 @ self.A, o2 @ self.D])
 
@@ -92,8 +95,7 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     full = reading.full
     if reading.touches_axis and not full:
         raise UnsupportedSolidError(
-            "a partial revolution of a profile that touches its axis (a pie slice) is not "
-            "supported"
+            "a partial revolution of a profile that touches its axis (a pie slice) is not supported"
         )
     if reading.touches_axis:
         from medialcad.api import medial_axis_2d
@@ -165,17 +167,17 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     for nd in graph.nodes:
         if nd.index in used or nd.kind is not NodeKind.CURVATURE_CENTRE:
             continue
-        c = cn.xy(nd.point_2d[None, :])[0]
-        r = float(nd.radius)
-        if abs(c[0]) <= 10 * tol:  # a ball centred on the axis (a sphere): one point
-            junctions.append((cn.model(np.array([0.0, c[1]]), np.array(0.0)), r))
+        cc = cn.xy(nd.point_2d[None, :])[0]
+        rr = float(nd.radius)
+        if abs(cc[0]) <= 10 * tol:  # a ball centred on the axis (a sphere): one point
+            junctions.append((cn.model(np.array([0.0, cc[1]]), np.array(0.0)), rr))
             continue
-        if c[0] < 0:
+        if cc[0] < 0:
             continue
         if full:
             lo, hi = 0.0, 2 * math.pi
-        elif not mid or r < c[0] * sigma:
-            phi0 = math.asin(min(r / c[0], 1.0))
+        elif not mid or rr < cc[0] * sigma:
+            phi0 = math.asin(min(rr / cc[0], 1.0))
             lo, hi = phi0, theta - phi0
         else:
             continue
@@ -184,8 +186,8 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
             a = lo + (hi - lo) * k / pieces
             b = lo + (hi - lo) * (k + 1) / pieces
             w = np.linspace(0.0, 1.0, nv_rev)
-            pts = cn.model(np.broadcast_to(c, (nv_rev, 2)), a + w * (b - a))
-            axis_lines.append((pts, np.full(nv_rev, r), w))
+            pts = cn.model(np.broadcast_to(cc, (nv_rev, 2)), a + w * (b - a))
+            axis_lines.append((pts, np.full(nv_rev, rr), w))
     from medialcad.mat3d.assemble import build_grid_complex
 
     mid_plane = None
@@ -205,11 +207,15 @@ def _end_role(s: Segment, which: int) -> str | None:
     end = s.start if which == 0 else s.end
     if end.kind != "node":
         return None
-    return {
-        NodeKind.BRANCH_POINT: "seam",
-        NodeKind.CURVATURE_CENTRE: "skeletal",
-        NodeKind.CONVEX_VERTEX: "rim",
-    }[end.node_kind] if end.node_kind is not None else None
+    return (
+        {
+            NodeKind.BRANCH_POINT: "seam",
+            NodeKind.CURVATURE_CENTRE: "skeletal",
+            NodeKind.CONVEX_VERTEX: "rim",
+        }[end.node_kind]
+        if end.node_kind is not None
+        else None
+    )
 
 
 def _revolved_sheet(
@@ -232,8 +238,15 @@ def _revolved_sheet(
     rad = np.broadcast_to(r[:, None], (len(c), nv)).copy()
     grids.append(
         GridPatch(
-            "revolved", s.w, v, pts, rad, ("SB", si), ("ST", si),
-            (_end_role(s, 0), float(r[0])), (_end_role(s, 1), float(r[-1])),
+            "revolved",
+            s.w,
+            v,
+            pts,
+            rad,
+            ("SB", si),
+            ("ST", si),
+            (_end_role(s, 0), float(r[0])),
+            (_end_role(s, 1), float(r[-1])),
         )
     )
     for i, end in ((0, s.start), (-1, s.end)):
@@ -251,12 +264,21 @@ def _full_sheets(
     v = np.linspace(0.0, 1.0, nv)
     for k in range(4):
         phi = quarters[k] + v * (quarters[k + 1] - quarters[k])
-        pts = cn.model(np.broadcast_to(c[:, None, :], (len(c), nv, 2)), np.broadcast_to(phi, (len(c), nv)))
+        pts = cn.model(
+            np.broadcast_to(c[:, None, :], (len(c), nv, 2)), np.broadcast_to(phi, (len(c), nv))
+        )
         rad = np.broadcast_to(r[:, None], (len(c), nv)).copy()
         grids.append(
             GridPatch(
-                "revolved", s.w, v, pts, rad, ("ROW", si, k), ("ROW", si, (k + 1) % 4),
-                (_end_role(s, 0), float(r[0])), (_end_role(s, 1), float(r[-1])),
+                "revolved",
+                s.w,
+                v,
+                pts,
+                rad,
+                ("ROW", si, k),
+                ("ROW", si, (k + 1) % 4),
+                (_end_role(s, 0), float(r[0])),
+                (_end_role(s, 1), float(r[-1])),
             )
         )
 
@@ -303,9 +325,9 @@ def _cap_nv(cn: _Canon, jobs: list[tuple], base: int, tol: float) -> int:
         v = np.linspace(0.0, 1.0, nv)
         vm = 0.5 * (v[1:] + v[:-1])
         worst = 0.0
-        for args in jobs:
-            q, phi, _ = _cap_grid(*args, v)
-            qm, phim, _ = _cap_grid(*args, vm)
+        for seg, c, f, r, th, sg, hi in jobs:
+            q, phi, _ = _cap_grid(seg, c, f, r, th, sg, hi, v)
+            qm, phim, _ = _cap_grid(seg, c, f, r, th, sg, hi, vm)
             pts, exact = cn.model(q, phi), cn.model(qm, phim)
             fit = make_interp_spline(v, pts, k=min(3, nv - 1), axis=1)(vm)
             worst = max(worst, float(np.linalg.norm(fit - exact, axis=-1).max()))
@@ -343,7 +365,9 @@ def _cap_sheets(
         offsets.append(("OFF", si, side))
 
 
-def interp_grid(w: FloatArray, v: FloatArray, values: FloatArray) -> tuple[FloatArray, FloatArray, int, int, FloatArray]:
+def interp_grid(
+    w: FloatArray, v: FloatArray, values: FloatArray
+) -> tuple[FloatArray, FloatArray, int, int, FloatArray]:
     """Tensor interpolation: knots in u and v, degrees, poles."""
     ku = int(min(3, len(w) - 1))
     kv = int(min(3, len(v) - 1))

@@ -12,6 +12,7 @@ Pure numpy/scipy: no OCC.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -106,8 +107,7 @@ def _joint(boundary: Boundary, e_from: int, e_to: int) -> tuple[FloatArray, Floa
         p = np.asarray(vert.vertex, dtype=float)
     else:  # two edges meeting tangentially: the end of ``a`` next to ``b``
         assert a.piece is not None and b.piece is not None
-        ends = [a.piece.t0, a.piece.t1]
-        pts = a.piece.curve.point(np.array(ends))
+        pts = a.piece.curve.point(np.array([a.piece.t0, a.piece.t1]))
         q = b.piece.curve.point(np.array([b.piece.t0, b.piece.t1]))
         dist = np.linalg.norm(pts[:, None, :] - q[None, :, :], axis=2)
         i = int(np.unravel_index(np.argmin(dist), dist.shape)[0])
@@ -182,10 +182,10 @@ def _loop_points(boundary: Boundary, loop: int, s0: float, s1: float, step: floa
                 marks.append(x)
     marks = sorted(set(marks))
     out = []
-    for a, b in zip(marks[:-1], marks[1:], strict=True):
+    for a, b in itertools.pairwise(marks):
         n = max(2, int(np.ceil((b - a) / step)))
         out.append(np.linspace(a, b, n + 1)[:-1])
-    ss = np.concatenate(out + [np.array([s1])])
+    ss = np.concatenate([*out, np.array([s1])])
     pts = []
     for x in ss:
         xm = x % length
@@ -200,7 +200,11 @@ def _loop_points(boundary: Boundary, loop: int, s0: float, s1: float, step: floa
 
 
 def _element_at(boundary: Boundary, loop: int, s: float, prefer_end: bool):  # type: ignore[no-untyped-def]
-    cands = [e for e in boundary.elements if e.loop == loop and e.s0 - 1e-12 <= s <= e.s0 + e.length + 1e-12]
+    cands = [
+        e
+        for e in boundary.elements
+        if e.loop == loop and e.s0 - 1e-12 <= s <= e.s0 + e.length + 1e-12
+    ]
     cands = [e for e in cands if e.piece is not None] or cands
     return cands[-1] if not prefer_end else cands[0]
 
@@ -244,12 +248,18 @@ def _fan(
     segs = []
     for s0, s1 in pieces:
         part = _loop_points(boundary, loop, s0, s1, step)
-        if len(part) < 2 or float(np.linalg.norm(part[-1] - part[0])) + float(np.ptp(part, axis=0).max()) <= 1e-9 * boundary.diag:
+        if (
+            len(part) < 2
+            or float(np.linalg.norm(part[-1] - part[0])) + float(np.ptp(part, axis=0).max())
+            <= 1e-9 * boundary.diag
+        ):
             continue
         w = _chord(part)
         m = len(part)
         centre = np.broadcast_to(nd.point_2d, (m, 2)).copy()
-        segs.append(Segment(-1, w, centre, np.full(m, r), part, part.copy(), -1, -1, end, end, True))
+        segs.append(
+            Segment(-1, w, centre, np.full(m, r), part, part.copy(), -1, -1, end, end, True)
+        )
     return segs
 
 
@@ -284,7 +294,9 @@ def _split(
     # cut points: (u, kind, centre, radius, foot_a, foot_b)
     cuts: list[tuple[float, str, FloatArray, float, FloatArray, FloatArray]] = []
 
-    def at(uu: float, r_force: float | None, i: int) -> tuple[FloatArray, float, FloatArray, FloatArray]:
+    def at(
+        uu: float, r_force: float | None, i: int
+    ) -> tuple[FloatArray, float, FloatArray, FloatArray]:
         v = sp(np.array([uu]))[0]
         c, r = v[:2], float(v[2]) if r_force is None else r_force
         w = (uu - u[i]) / max(u[i + 1] - u[i], 1e-300)
@@ -345,21 +357,23 @@ def _split(
     cuts.sort(key=lambda x: x[0])
     # merge cuts closer than a sliver
     merged: list[tuple[float, str, FloatArray, float, FloatArray, FloatArray]] = []
-    for c in cuts:
-        if merged and c[0] - merged[-1][0] < 1e-9:
+    for cut in cuts:
+        if merged and cut[0] - merged[-1][0] < 1e-9:
             continue
-        if c[0] < 1e-9 or c[0] > 1 - 1e-9:
+        if cut[0] < 1e-9 or cut[0] > 1 - 1e-9:
             continue
-        merged.append(c)
+        merged.append(cut)
 
-    start_end = End("node", b.start, graph.nodes[b.start].kind) if b.start is not None else End("split")
+    start_end = (
+        End("node", b.start, graph.nodes[b.start].kind) if b.start is not None else End("split")
+    )
     stop_end = End("node", b.end, graph.nodes[b.end].kind) if b.end is not None else End("split")
     bounds = [(0.0, start_end, ca[0], float(rad[0]), fa[0], fb[0])]
     bounds += [(m[0], End(m[1]), m[2], m[3], m[4], m[5]) for m in merged]
     bounds += [(1.0, stop_end, ca[-1], float(rad[-1]), fa[-1], fb[-1])]
 
     segs: list[Segment] = []
-    for (u0, e0, c0, r0, a0, b0), (u1, e1, c1, r1, a1, b1) in zip(bounds[:-1], bounds[1:], strict=True):
+    for (u0, e0, c0, r0, a0, b0), (u1, e1, c1, r1, a1, b1) in itertools.pairwise(bounds):
         span = u1 - u0
         inner = (u > u0 + 1e-9 * 1) & (u < u1 - 1e-9)
         inner &= (u - u0 > 1e-6 * span) & (u1 - u > 1e-6 * span)
@@ -423,7 +437,7 @@ def _refine(
         ex = sp(u0 + wm * span)  # type: ignore[operator]
         ex_a = _project_many(boundary, el_a, ex[:, :2])
         ex_b = _project_many(boundary, el_b, ex[:, :2])
-        bad = (np.linalg.norm(fit_c - ex, axis=1) > 0.1 * tol)
+        bad = np.linalg.norm(fit_c - ex, axis=1) > 0.1 * tol
         bad |= np.linalg.norm(fit_a - ex_a, axis=1) > 0.02 * tol
         bad |= np.linalg.norm(fit_b - ex_b, axis=1) > 0.02 * tol
         bad &= np.diff(w) > 1e-7

@@ -54,7 +54,17 @@ def medial_axis_of(
     if not sheets and not seams and not skeletal and not junctions:
         raise UnsupportedSolidError("the medial axis of this solid came out empty")
     return MedialAxis3D(
-        reading.kind, reading, mat2d, tol_abs, sheets, seams, junctions, skeletal, rims, comp, timings
+        reading.kind,
+        reading,
+        mat2d,
+        tol_abs,
+        sheets,
+        seams,
+        junctions,
+        skeletal,
+        rims,
+        comp,
+        timings,
     )
 
 
@@ -79,5 +89,12 @@ def _extrusion(reading: Extrusion, mat2d: Any, diag: float, tol: float) -> tuple
     if level is not None:
         mid = (frame.origin + h * d, frame.xdir, frame.ydir)
     return build_complex(
-        patches, offsets, lines, junctions, diag=diag, mid_plane=mid, mid_radius=h, seam_roles=_roles
+        patches,
+        offsets,
+        lines,
+        junctions,
+        diag=diag,
+        mid_plane=mid,
+        mid_radius=h,
+        seam_roles=_roles,
     )

@@ -18,7 +18,7 @@ nested by their 2D polygons.
 
 from __future__ import annotations
 
-from collections.abc import Hashable
+from collections.abc import Hashable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 from OCP.BRep import BRep_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
-from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface, Geom_Plane
+from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface
 from OCP.Geom2d import Geom2d_Line
 from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pln, gp_Pnt, gp_Pnt2d
 from OCP.TColgp import TColgp_Array1OfPnt, TColgp_Array2OfPnt
@@ -54,7 +54,8 @@ class Row:
 
 
 def _knots_mults(t: FloatArray) -> tuple[TColStd_Array1OfReal, TColStd_Array1OfInteger]:
-    vals, mults = [], []
+    vals: list[float] = []
+    mults: list[int] = []
     for x in t:
         if vals and abs(x - vals[-1]) <= 1e-13:
             mults[-1] += 1
@@ -223,7 +224,9 @@ class ComplexBuilder:
         self.faces.append(face)
         return face
 
-    def _col_side(self, wire: TopoDS_Wire, face: TopoDS_Face, u: float, col: Row, *, up: bool) -> None:
+    def _col_side(
+        self, wire: TopoDS_Wire, face: TopoDS_Face, u: float, col: Row, *, up: bool
+    ) -> None:
         """The side ``u = const`` (poles from ``v = 0`` to ``v = 1``), traversed up or down."""
         v0, v1 = self.vertex(col.poles[0]), self.vertex(col.poles[-1])
         if self.is_degenerate(col):
@@ -231,7 +234,12 @@ class ComplexBuilder:
             self._degenerate(wire, face, pc, v0)
             return
         mid = col.poles[len(col.poles) // 2]
-        key = ("side", min(v0, v1), max(v0, v1), tuple(np.round(mid / (100 * self.merge)).astype(int)))
+        key = (
+            "side",
+            min(v0, v1),
+            max(v0, v1),
+            tuple(np.round(mid / (100 * self.merge)).astype(int)),
+        )
         e = self.curve_edges.get(key)
         if e is None:
             e = self.curve_edge(Row(key, col.knots, col.poles, col.degree))
@@ -243,7 +251,14 @@ class ComplexBuilder:
         self.builder.Add(wire, e.edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
 
     def _row_side(
-        self, wire: TopoDS_Wire, face: TopoDS_Face, row: Row, v: float, *, forward: bool, v_from: int
+        self,
+        wire: TopoDS_Wire,
+        face: TopoDS_Face,
+        row: Row,
+        v: float,
+        *,
+        forward: bool,
+        v_from: int,
     ) -> None:
         if self.is_degenerate(row):
             d = 1.0 if forward else -1.0
@@ -286,7 +301,7 @@ class ComplexBuilder:
         self.builder.Add(wire, e.Oriented(TopAbs_FORWARD))
 
     def planar_faces(
-        self, keys: list[Hashable], origin: FloatArray, xdir: FloatArray, ydir: FloatArray
+        self, keys: Sequence[Hashable], origin: FloatArray, xdir: FloatArray, ydir: FloatArray
     ) -> list[TopoDS_Face]:
         """Planar faces bounded by the curve edges ``keys`` (loops found by their vertices).
 
@@ -305,8 +320,14 @@ class ComplexBuilder:
             p3 = np.vstack(pts)
             d = p3 - origin
             polys.append(np.column_stack([d @ xdir, d @ ydir]))
-        areas = [0.5 * float(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])) for p in polys]
-        depth = [sum(_inside(polys[i][0], polys[j]) for j in range(len(polys)) if j != i) for i in range(len(polys))]
+        areas = [
+            0.5 * float(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]))
+            for p in polys
+        ]
+        depth = [
+            sum(_inside(polys[i][0], polys[j]) for j in range(len(polys)) if j != i)
+            for i in range(len(polys))
+        ]
         zdir = np.cross(xdir, ydir)
         pln = gp_Pln(gp_Ax3(_pnt(origin), gp_Dir(*map(float, zdir)), gp_Dir(*map(float, xdir))))
         out: list[TopoDS_Face] = []
@@ -332,7 +353,9 @@ class ComplexBuilder:
         items = loop[::-1] if reverse else loop
         for key, fwd in items:
             f = fwd != reverse
-            self.builder.Add(wire, self.curve_edges[key].edge.Oriented(TopAbs_FORWARD if f else TopAbs_REVERSED))
+            self.builder.Add(
+                wire, self.curve_edges[key].edge.Oriented(TopAbs_FORWARD if f else TopAbs_REVERSED)
+            )
         return wire
 
     def compound(self, extra: list[Any] = ()) -> TopoDS_Compound:  # type: ignore[assignment]

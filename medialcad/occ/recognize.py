@@ -49,9 +49,9 @@ from OCP.GProp import GProp_GProps
 from OCP.ShapeAnalysis import ShapeAnalysis_ShapeTolerance
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_REVERSED, TopAbs_VERTEX
+from OCP.TopExp import TopExp
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 from OCP.TopTools import TopTools_IndexedMapOfShape
-from OCP.TopExp import TopExp
 
 from medialcad.errors import (
     InputError,
@@ -144,7 +144,9 @@ def _face_data(index: int, face: TopoDS_Face) -> _FaceData:
             nrm.append(flip * n / norm)
     vmap = TopTools_IndexedMapOfShape()
     TopExp.MapShapes_s(face, TopAbs_VERTEX, vmap)
-    verts = [_xyz(BRep_Tool.Pnt_s(TopoDS.Vertex_s(vmap.FindKey(i)))) for i in range(1, vmap.Extent() + 1)]
+    verts = [
+        _xyz(BRep_Tool.Pnt_s(TopoDS.Vertex_s(vmap.FindKey(i)))) for i in range(1, vmap.Extent() + 1)
+    ]
     props = GProp_GProps()
     BRepGProp.SurfaceProperties_s(face, props)
     return _FaceData(
@@ -219,7 +221,11 @@ def _check_extrusion(
         hv = f.vertices @ d
         if len(hv) and (hv.min() < h0 - lin_tol or hv.max() > h1 + lin_tol):
             return f"{_describe(f)} reaches past the caps"
-        dev = max(dev, float(np.abs(f.normals @ d).max()) * (float(np.ptp(f.points @ d)) if len(f.points) else 0.0))
+        dev = max(
+            dev,
+            float(np.abs(f.normals @ d).max())
+            * (float(np.ptp(f.points @ d)) if len(f.points) else 0.0),
+        )
     area_b = sum(f.area for f in bottom)
     area_t = sum(f.area for f in top)
     if abs(area_b - area_t) > 1e-6 * max(area_b, area_t) + lin_tol * math.sqrt(max(area_b, 1e-300)):
@@ -329,7 +335,7 @@ def _plucker_axis(data: list[_FaceData]) -> tuple[FloatArray, FloatArray] | None
     if not rows:
         return None
     m = np.vstack(rows)
-    _, s, vt = np.linalg.svd(m, full_matrices=False)
+    _, _s, vt = np.linalg.svd(m, full_matrices=False)
     v = vt[-1]
     d, mom = v[:3], v[3:]
     nd = float(np.linalg.norm(d))
@@ -361,7 +367,8 @@ def _revolution_candidates(data: list[_FaceData]) -> list[tuple[FloatArray, Floa
     out: list[tuple[FloatArray, FloatArray]] = []
     for a, d in cands:
         if not any(
-            abs(abs(float(d @ d2)) - 1.0) < 1e-9 and np.linalg.norm(_radial(a[None], a2, d2)) < 1e-9 * (1 + np.linalg.norm(a))
+            abs(abs(float(d @ d2)) - 1.0) < 1e-9
+            and np.linalg.norm(_radial(a[None], a2, d2)) < 1e-9 * (1 + np.linalg.norm(a))
             for a2, d2 in out
         ):
             out.append((a, d))
@@ -387,7 +394,7 @@ def _merge_faces(fs: list[TopoDS_Face], what: str) -> TopoDS_Face:
 
 def _section(solid: TopoDS_Shape, frame: Frame, size: float) -> TopoDS_Face:
     """The meridian section of ``solid`` in the half-plane ``x >= 0`` of ``frame``."""
-    o, x, y = frame.origin, frame.xdir, frame.ydir
+    o, x, _y = frame.origin, frame.xdir, frame.ydir
     ax = gp_Ax3(gp_Pnt(*o), gp_Dir(*frame.zdir), gp_Dir(*x))
     with occ_guard("cutting the meridian section"):
         half = BRepBuilderAPI_MakeFace(gp_Pln(ax), 0.0, 2 * size, -2 * size, 2 * size).Face()
@@ -452,7 +459,9 @@ def recognize_solid(obj: Any, tol: float | None = None) -> SolidKind:
     ext = _recognize_extrusion(solid, data, lin_tol, ang_tol, volume, reasons)
     rev = _recognize_revolution(solid, data, lin_tol, ang_tol, volume, diag, reasons)
     if ext is not None:
-        return replace(ext, alternative=rev and replace(rev, solid=solid, diag=diag), solid=solid, diag=diag)
+        return replace(
+            ext, alternative=rev and replace(rev, solid=solid, diag=diag), solid=solid, diag=diag
+        )
     if rev is not None:
         return replace(rev, solid=solid, diag=diag)
     raise NotExtrusionOrRevolutionError(
