@@ -135,7 +135,34 @@ def split_branches(
     for nd in graph.nodes:
         if nd.index not in used and nd.kind is NodeKind.CURVATURE_CENTRE:
             out.extend(_fan(graph, boundary, nd.index, None))
-    return out
+    return [_dedupe(s) for s in out]
+
+
+def _dedupe(s: Segment, gap: float = 1e-9) -> Segment:
+    """Drop samples closer than ``gap`` in ``w`` to their predecessor (OCC merges knots
+    closer than its parametric resolution); the end samples always stay."""
+    w = s.w
+    keep = np.concatenate([[True], np.diff(w) > gap])
+    if len(w) > 1 and not keep[-1]:
+        keep[-1] = True
+        j = int(np.nonzero(keep[:-1])[0][-1])
+        if w[-1] - w[j] <= gap and j > 0:
+            keep[j] = False
+    if np.all(keep):
+        return s
+    return Segment(
+        s.branch,
+        w[keep],
+        s.centre[keep],
+        s.radius[keep],
+        s.foot_a[keep],
+        s.foot_b[keep],
+        s.element_a,
+        s.element_b,
+        s.start,
+        s.end,
+        s.single,
+    )
 
 
 def _project(boundary: Boundary, element: int, c: FloatArray) -> tuple[FloatArray, float]:

@@ -131,17 +131,22 @@ def _face_data(index: int, face: TopoDS_Face) -> _FaceData:
         axis = (np.zeros(3), _xyz(surf.Direction()))
     u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
     flip = -1.0 if face.Orientation() == TopAbs_REVERSED else 1.0
-    pts, nrm = [], []
     pnt, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
+    raw = np.empty((GRID * GRID, 9))
+    k = 0
     for u in np.linspace(u0, u1, GRID):
         for v in np.linspace(v0, v1, GRID):
             surf.D1(float(u), float(v), pnt, du, dv)
-            n = np.cross(_xyz(du), _xyz(dv))
-            norm = float(np.linalg.norm(n))
-            if norm < 1e-12 * max(1.0, du.Magnitude() * dv.Magnitude()):
-                continue  # a pole (sphere, cone apex)
-            pts.append(_xyz(pnt))
-            nrm.append(flip * n / norm)
+            raw[k] = (pnt.X(), pnt.Y(), pnt.Z(), du.X(), du.Y(), du.Z(), dv.X(), dv.Y(), dv.Z())
+            k += 1
+    n = np.cross(raw[:, 3:6], raw[:, 6:9])
+    norm = np.linalg.norm(n, axis=1)
+    scale = np.maximum(
+        1.0, np.linalg.norm(raw[:, 3:6], axis=1) * np.linalg.norm(raw[:, 6:9], axis=1)
+    )
+    ok = norm >= 1e-12 * scale  # drop poles (sphere, cone apex)
+    pts = raw[ok, :3]
+    nrm = flip * n[ok] / norm[ok, None]
     vmap = TopTools_IndexedMapOfShape()
     TopExp.MapShapes_s(face, TopAbs_VERTEX, vmap)
     verts = [
@@ -153,8 +158,8 @@ def _face_data(index: int, face: TopoDS_Face) -> _FaceData:
         index,
         face,
         kind,
-        np.array(pts).reshape(-1, 3),
-        np.array(nrm).reshape(-1, 3),
+        pts.reshape(-1, 3),
+        nrm.reshape(-1, 3),
         np.array(verts).reshape(-1, 3),
         axis,
         float(props.Mass()),
