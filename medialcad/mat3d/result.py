@@ -46,13 +46,14 @@ class Sheet:
         if self.role == "mid":
             return np.full(np.shape(np.asarray(u, dtype=float)), float(self.radius0[0]))
         if self.radius_grid is not None and self.v_knots is not None:
-            uu = np.atleast_1d(np.asarray(u, dtype=float))
-            vv = np.broadcast_to(np.asarray(v, dtype=float), uu.shape)
+            shape = np.broadcast(np.asarray(u, dtype=float), np.asarray(v, dtype=float)).shape
+            uu = np.broadcast_to(np.asarray(u, dtype=float), shape).ravel()
+            vv = np.broadcast_to(np.asarray(v, dtype=float), shape).ravel()
             cu = _bspline(self.knots, self.radius_grid, self.degree, uu)  # (n, nv)
-            out = np.array(
-                [_bspline(self.v_knots, cu[i], self.v_degree, vv[i]) for i in range(len(uu))]
-            )
-            return out.reshape(np.shape(np.asarray(u, dtype=float)))
+            # the v-basis at every vv: evaluate the identity coefficients once
+            nv = self.radius_grid.shape[1]
+            basis = _bspline(self.v_knots, np.eye(nv), self.v_degree, vv)  # (n, nv)
+            return np.asarray(np.einsum("ij,ij->i", cu, basis).reshape(shape))
         vv = np.asarray(v, dtype=float)
         r0 = _bspline(self.knots, self.radius0, self.degree, u)
         r1 = _bspline(self.knots, self.radius1, self.degree, u)
@@ -60,9 +61,10 @@ class Sheet:
 
     def to_json(self) -> dict[str, Any]:
         if self.role == "mid":
-            return {"type": "constant", "radius": float(self.radius0[0])}
+            return {"role": self.role, "type": "constant", "radius": float(self.radius0[0])}
         if self.radius_grid is not None and self.v_knots is not None:
             return {
+                "role": self.role,
                 "type": "tensor",
                 "u_knots": self.knots.tolist(),
                 "u_degree": self.degree,
@@ -71,6 +73,7 @@ class Sheet:
                 "poles": self.radius_grid.tolist(),
             }
         return {
+            "role": self.role,
             "type": "ruled",
             "u_knots": self.knots.tolist(),
             "degree": self.degree,
@@ -102,7 +105,21 @@ class Seam:
             "knots": self.knots.tolist(),
             "degree": self.degree,
             "poles": self.radius_poles.tolist(),
+            "points": _edge_points(self.edge),
         }
+
+
+def _edge_points(edge: Any) -> list[list[float]]:
+    """Start, middle and end point of an edge (to find it again in a BREP/STEP file)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+
+    c = BRepAdaptor_Curve(edge)
+    t0, t1 = c.FirstParameter(), c.LastParameter()
+    out = []
+    for t in (t0, 0.5 * (t0 + t1), t1):
+        p = c.Value(t)
+        out.append([p.X(), p.Y(), p.Z()])
+    return out
 
 
 @dataclass(frozen=True)

@@ -373,11 +373,15 @@ def _split(
         vals[-1, :2], vals[-1, 2] = ca[-1], rad[-1]
         rv = gfun(vals[:, :2], vals[:, 2])
         for j in range(len(dense) - 1):
-            if rv[j] * rv[j + 1] < 0:
+            if rv[j] == 0 and j > 0 and rv[j - 1] * rv[j + 1] < 0:
+                us = float(dense[j])  # a sample exactly on the level
+            elif rv[j] * rv[j + 1] < 0:
                 us = float(brentq(g1, dense[j], dense[j + 1], xtol=1e-14))
-                i = int(np.clip(np.searchsorted(u, us) - 1, 0, n - 2))
-                c, r, ga, gb = at(us, None, i)
-                cuts.append((us, "level", c, r, ga, gb))
+            else:
+                continue
+            i = int(np.clip(np.searchsorted(u, us) - 1, 0, n - 2))
+            c, r, ga, gb = at(us, None, i)
+            cuts.append((us, "level", c, r, ga, gb))
     if b.start is None:  # closed: cut in two at the middle sample
         i = n // 2
         cuts.append((float(u[i]), "split", ca[i], float(rad[i]), fa[i], fb[i]))

@@ -36,6 +36,7 @@ def nearest_entity(
                     return "face", i, (u, w)
         elif kind == BRepExtrema_IsOnEdge:
             t = dss.ParOnEdgeS2(1)
+            t = t[0] if isinstance(t, tuple) else t  # OCP returns (t,)
             for i, e in enumerate(edges_):
                 if e.IsSame(support):
                     return "edge", i, (t,)

@@ -1,0 +1,116 @@
+"""How time and peak memory grow with the size of the input.
+
+- 2D engine on star-shaped polygons with 10, 100, 1,000, 10,000 boundary edges;
+- 3D (extrusion) on gear wheels with 10 to 200 teeth.
+
+Each case runs in its own process (peak RSS from ``resource``), with a time budget per
+case: sizes beyond the budget are reported as such, not silently dropped.
+
+    python bench/bench_scaling.py [--budget 120] [--out bench/results_scaling.md]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+WORKER = r"""
+import json, math, resource, sys, time
+sys.path.insert(0, {root!r})
+import cadquery as cq
+kind, n = sys.argv[1], int(sys.argv[2])
+if kind == "2d":
+    pts = []
+    for i in range(n):
+        a = 2 * math.pi * i / n
+        r = 50 * (1 + 0.15 * math.sin(7 * a) + 0.05 * math.sin(23 * a))
+        pts.append((r * math.cos(a), r * math.sin(a)))
+    face = cq.Face.makeFromWires(cq.Workplane().polyline(pts).close().val())
+    from medialcad import medial_axis_2d
+    t0 = time.perf_counter()
+    m = medial_axis_2d(face)
+    out = {{"time": time.perf_counter() - t0, "branches": len(m.branches)}}
+else:
+    teeth = n
+    r_root, r_tip = 40.0, 46.0
+    pts = []
+    for i in range(teeth):
+        a0 = 2 * math.pi * i / teeth
+        da = 2 * math.pi / teeth
+        for f, r in ((0.0, r_root), (0.25, r_tip), (0.5, r_tip), (0.75, r_root)):
+            a = a0 + f * da
+            pts.append((r * math.cos(a), r * math.sin(a)))
+    wp = cq.Workplane().polyline(pts).close().extrude(20).faces(">Z").workplane().hole(20)
+    from medialcad.api import medial_axis
+    t0 = time.perf_counter()
+    m = medial_axis(wp.val())
+    out = {{"time": time.perf_counter() - t0, "junctions": len(m.junctions), "sheets": len(m.sheets), "timings": m.timings}}
+out["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+print(json.dumps(out))
+"""
+
+
+def run_case(kind: str, n: int, budget: float) -> dict:
+    code = WORKER.format(root=str(ROOT))
+    try:
+        res = subprocess.run(
+            [sys.executable, "-c", code, kind, str(n)],
+            capture_output=True,
+            text=True,
+            timeout=budget,
+        )
+    except subprocess.TimeoutExpired:
+        return {"kind": kind, "n": n, "status": f"over the {budget:.0f} s budget"}
+    if res.returncode != 0:
+        return {"kind": kind, "n": n, "status": "failed: " + res.stderr.strip().splitlines()[-1]}
+    out = json.loads(res.stdout.strip().splitlines()[-1])
+    out.update(kind=kind, n=n, status="ok")
+    return out
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--budget", type=float, default=120.0, help="seconds per case")
+    ap.add_argument("--out", default=str(ROOT / "bench" / "results_scaling.md"))
+    args = ap.parse_args()
+    rows = []
+    for kind, sizes in (("2d", (10, 100, 1000, 10000)), ("3d", (10, 25, 50, 100, 200))):
+        prev = None
+        for n in sizes:
+            if prev is not None and prev.get("status") != "ok":
+                rows.append({"kind": kind, "n": n, "status": "skipped (smaller size over budget)"})
+                continue
+            r = run_case(kind, n, args.budget)
+            rows.append(r)
+            prev = r
+            print(json.dumps(r), flush=True)
+    lines = ["| case | n | status | time s | peak RSS MB | growth exponent |", "|---|---|---|---|---|---|"]
+    last: dict[str, dict] = {}
+    for r in rows:
+        exp = ""
+        p = last.get(r["kind"])
+        if r.get("status") == "ok" and p is not None:
+            exp = f"{math.log(r['time'] / p['time']) / math.log(r['n'] / p['n']):.2f}"
+        if r.get("status") == "ok":
+            last[r["kind"]] = r
+        label = "2D polygon edges" if r["kind"] == "2d" else "3D gear teeth"
+        lines.append(
+            f"| {label} | {r['n']} | {r['status']} | {r.get('time', float('nan')):.2f} | "
+            f"{r.get('peak_rss_mb', float('nan')):.0f} | {exp} |"
+        )
+    md = "\n".join(lines)
+    print(md)
+    Path(args.out).write_text(
+        "# Scaling (bench/bench_scaling.py)\n\nTime of the MAT computation only; growth "
+        "exponent = log(t2/t1)/log(n2/n1) between consecutive sizes.\n\n" + md + "\n"
+    )
+
+
+if __name__ == "__main__":
+    main()
