@@ -8,34 +8,36 @@ plain box would be 0.
 
 Definition used here: a medial point is a **wall point** when its ball is pinched
 between surfaces that face each other, i.e. two of its touch points are more than
-``min_angle`` (default 90 degrees) apart seen from the centre. On a plate the balls of
-the mid sheet touch both sides (180 degrees apart); along a right-angle edge the balls of
-the bisecting sheets touch the two faces exactly 90 degrees apart and do not count; an
-acute edge (faces meeting at less than 90 degrees) is a knife edge and does count, its
-walls taper to zero. Then:
+``min_angle`` apart seen from the centre (default 120 degrees: the two surfaces are
+within 60 degrees of facing each other squarely). On a plate the balls of the mid sheet
+touch both sides 180 degrees apart; the balls along an edge where two faces meet at an
+angle ``a`` touch them ``180 - a`` degrees apart, so right-angle edges (90) never count,
+nor do curved faces meeting at about a right angle (the inside of a bent tube's end, a
+few degrees over 90); an edge sharper than 60 degrees is a knife edge and does count,
+its wall tapering to (nearly) zero. Then:
 
 - **minimum wall thickness** = min of ``2 r`` over the wall points;
 - **maximum wall thickness** = max of ``2 r`` over the whole medial axis (the largest
   inscribed ball; its centre is a wall point).
 
 So a plate of thickness ``t`` gives ``min = max = t``, a tube gives its wall, a box
-``a x b x c`` (``c`` smallest) gives ``c``, an L-bracket the thickness of its legs (and
-the max, the ball wedged in the inner corner, is a little more).
+``a x b x c`` (``c`` smallest) gives ``c``, a cylinder its diameter, an L-bracket the
+thickness of its legs (its max, the ball wedged into the inner corner, is a little
+more). Balls smaller than ``10 tol`` are not judged (their touch directions are below
+the resolution of the fitted geometry), so a knife edge reads about ``20 tol`` thick.
 
 How it is computed:
 
-- on a sheet (two touch points) the touch directions are ``-grad r ± sqrt(1 - |grad r|^2) n``
-  (``grad r`` the surface gradient of the radius, ``n`` the sheet normal), so the angle
-  between them is ``arccos(2 |grad r|^2 - 1)``: sheets are sampled on a grid of their
-  ``(u, v)`` parameters, closure included, and the best samples refined;
+- on a sheet (two touch points) the touch directions are
+  ``-grad r ± sqrt(1 - |grad r|^2) n`` (``grad r`` the surface gradient of the radius,
+  ``n`` the sheet normal), so the angle between them is ``arccos(2 |grad r|^2 - 1)``:
+  sheets are sampled on grids of their ``(u, v)`` parameters, closure included, and the
+  best samples refined;
 - on the curves and junctions of the complex (three or more touch points, or a whole
   circle or sphere of them at a curvature centre, e.g. the axis of a cylinder) the touch
-  points are found on the solid: the nearest point of every face within ``r`` plus rays
-  cast on the cone of possible touch directions.
-
-The angle test carries a fixed allowance of :data:`ANGLE_SLACK` degrees, so the exact
-right angles of extrusions (caps against sides) never count because of rounding in the
-fitted sheets.
+  points are found on the solid: the nearest point of every face within ``r`` (+ 3 tol),
+  plus, on skeletal edges and junctions, rays cast on the cone of possible touch
+  directions.
 
 Example::
 
@@ -45,8 +47,8 @@ Example::
 
     mat = medial_axis(cq.Workplane().box(100, 60, 4))
     t = wall_thickness(mat)
-    t.min, t.max            # (4.0, 4.0): the plate's thickness
-    t.min_location          # a point of the mid sheet
+    t.min, t.max                  # (4.0, 4.0): the plate's thickness
+    t.min_location                # the centre of a thinnest ball, on the mid sheet
     thickness_at(mat, (0, 0, 0))  # 4.0
 """
 
@@ -59,12 +61,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["ANGLE_SLACK", "Thickness", "thickness_at", "wall_thickness"]
+__all__ = ["Thickness", "thickness_at", "wall_thickness"]
 
 FloatArray = NDArray[np.float64]
-
-ANGLE_SLACK = 1.0
-"""Degrees by which the touch directions must exceed ``min_angle`` to count as a wall."""
 
 _R_FLOOR = 10.0
 """Balls smaller than this many tolerances are not walls: their touch directions cannot be
@@ -119,19 +118,23 @@ class _Best:
 
 
 def wall_thickness(
-    result: Any, *, min_angle: float = 90.0, samples: int = 33, refine: bool = True
+    result: Any, *, min_angle: float = 120.0, samples: int = 33, refine: bool = True
 ) -> Thickness:
     """Minimum and maximum wall thickness of the solid whose MAT is ``result``.
 
     Args:
         result: a :class:`medialcad.mat3d.result.MedialAxis3D`.
         min_angle: degrees; a medial point counts as a wall point when two of its touch
-            points are more than ``min_angle`` (+ :data:`ANGLE_SLACK`) apart seen from
-            the ball's centre. Raise it (e.g. to 150) to count only walls whose faces are
-            nearly parallel.
+            points are more than ``min_angle`` apart seen from the ball's centre. Raise it
+            (e.g. to 150) to count only walls whose faces are nearly parallel. At 90 or less
+            the balls along right-angle edges (touches exactly 90 degrees apart) come
+            into play and the minimum drops towards 0.
         samples: grid points per parameter direction of a sheet (more where the sheet's
             knots are dense) and per curve.
         refine: refine the best samples by zooming in on their neighbourhoods.
+
+    The curves and junctions are judged on the solid (``result.recognition.solid``); a
+    result without it is judged on its sheets alone.
 
     Returns:
         A :class:`Thickness`.
@@ -143,11 +146,9 @@ def wall_thickness(
     """
     if not 0.0 <= min_angle <= 180.0:
         raise ValueError(f"min_angle must be within [0, 180] degrees, got {min_angle!r}")
-    cos_lim = math.cos(math.radians(min(min_angle + ANGLE_SLACK, 180.0)))
+    cos_lim = math.cos(math.radians(min_angle))
     prober = _Prober.of(result)
     r_floor = _R_FLOOR * float(result.tol)
-    lo: _Best | None = None
-    hi: _Best | None = None
     lo_cands: list[_Best] = []
     hi_cands: list[_Best] = []
 
@@ -196,11 +197,11 @@ def wall_thickness(
         probes.append((float(jn.radius), p, jn.name, ("point",), None, 0.0, True))
     if prober is not None:
         bound = min((b.value for b in lo_cands), default=math.inf)
-        for r, p, name, key, tangent, slope, rays in sorted(probes, key=lambda x: x[0]):
-            if r >= bound:
+        for pr, pp, name, key, tangent, ps, rays in sorted(probes, key=lambda x: x[0]):
+            if pr >= bound:
                 break
-            if r > r_floor and prober.is_wall(p, r, cos_lim, tangent, slope, rays=rays):
-                lo_cands.append(_Best(r, p, name, key))
+            if pr > r_floor and prober.is_wall(pp, pr, cos_lim, tangent, ps, rays=rays):
+                lo_cands.append(_Best(pr, pp, name, key))
                 break
 
     if not hi_cands:
@@ -215,8 +216,7 @@ def wall_thickness(
             _refine(result, prober, b, cos_lim, r_floor, maximum=False) for b in lo_cands[:3]
         ]
     hi = max(hi_cands, key=lambda b: b.value)
-    if lo_cands:
-        lo = min(lo_cands, key=lambda b: b.value)
+    lo = min(lo_cands, key=lambda b: b.value) if lo_cands else None
     return Thickness(
         min=2.0 * lo.value if lo is not None else math.nan,
         max=2.0 * hi.value,
@@ -308,6 +308,22 @@ class _SheetSampler:
         self.eps = 1e-7 * span  # keep off degenerated sides, where the gradient is 0/0
         self.ruled = self._is_ruled()
 
+    def _radius(self, u: FloatArray, v: FloatArray) -> FloatArray:
+        """``sheet.radius(u, v)``, vectorised here for tensor sheets (revolutions)."""
+        sheet = self.sheet
+        grid = getattr(sheet, "radius_grid", None)
+        v_knots = getattr(sheet, "v_knots", None)
+        if grid is None or v_knots is None or sheet.role == "mid":
+            return np.asarray(sheet.radius(u, v), dtype=float)
+        from scipy.interpolate import BSpline
+
+        uu = np.asarray(u, dtype=float)
+        vv = np.asarray(v, dtype=float)
+        cu = BSpline(sheet.knots, grid, sheet.degree, extrapolate=True)(uu)  # (n, nv)
+        vk = np.asarray(v_knots, dtype=float)
+        basis = BSpline.design_matrix(vv, vk, sheet.v_degree, extrapolate=True).toarray()
+        return np.asarray(np.einsum("ij,ij->i", basis, cu), dtype=float)
+
     def _is_ruled(self) -> bool:
         """A B-spline sheet ruled in ``v`` whose face is its whole parameter rectangle
         (the sewn sheets of :mod:`medialcad.occ.complex`): rows give every point."""
@@ -376,15 +392,11 @@ class _SheetSampler:
         if not inside.any():
             return None
         pts, su, sv, uu, vv = pts[inside], su[inside], sv[inside], uu[inside], vv[inside]
-        rad = np.asarray(self.sheet.radius(uu, vv), dtype=float)
+        rad = self._radius(uu, vv)
         hu = 1e-6 * max(self.u1 - self.u0, 1e-300)
         hv = 1e-6 * max(self.v1 - self.v0, 1e-300)
-        ru = (
-            np.asarray(self.sheet.radius(uu + hu, vv)) - np.asarray(self.sheet.radius(uu - hu, vv))
-        ) / (2 * hu)
-        rv = (
-            np.asarray(self.sheet.radius(uu, vv + hv)) - np.asarray(self.sheet.radius(uu, vv - hv))
-        ) / (2 * hv)
+        ru = (self._radius(uu + hu, vv) - self._radius(uu - hu, vv)) / (2 * hu)
+        rv = (self._radius(uu, vv + hv) - self._radius(uu, vv - hv)) / (2 * hv)
         e = np.einsum("ij,ij->i", su, su)
         f = np.einsum("ij,ij->i", su, sv)
         g = np.einsum("ij,ij->i", sv, sv)
