@@ -90,7 +90,10 @@ def main() -> None:
             rows.append(r)
             prev = r
             print(json.dumps(r), flush=True)
-    lines = ["| case | n | status | time s | peak RSS MB | growth exponent |", "|---|---|---|---|---|---|"]
+    lines = [
+        "| case | n | status | time s | peak RSS MB | growth exponent |",
+        "|---|---|---|---|---|---|",
+    ]
     last: dict[str, dict] = {}
     for r in rows:
         exp = ""

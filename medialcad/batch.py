@@ -121,7 +121,7 @@ def plan_jobs(
 ) -> list[Job]:
     """The :class:`Job` of every input (output names as in the module docstring)."""
     in_dir, out_dir = in_dir.resolve(), out_dir.resolve()
-    rels = [p.resolve().relative_to(in_dir) for p in inputs]
+    rels = [Path(os.path.abspath(p)).relative_to(in_dir) for p in inputs]  # keep symlinks
     stems: dict[Path, int] = {}
     for rel in rels:
         key = rel.parent / rel.stem
@@ -216,9 +216,7 @@ OnDone = Callable[[dict[str, Any]], None]
 Worker = Callable[[Job], dict[str, Any]]
 
 
-def run_local(
-    jobs: list[Job], workers: int, on_done: OnDone, fn: Worker = process_file
-) -> None:
+def run_local(jobs: list[Job], workers: int, on_done: OnDone, fn: Worker = process_file) -> None:
     """Run ``jobs`` on a pool of ``workers`` processes (spawned: no fork of OCC state).
 
     At most ``workers`` jobs are in flight, so when a worker dies only those are suspects:
@@ -264,9 +262,7 @@ def _run_isolated(jobs: list[Job], ctx: Any, on_done: OnDone, fn: Worker) -> Non
     """Each job in its own one-worker pool (all at once: at most ``--jobs`` of them)."""
     pools = [ProcessPoolExecutor(max_workers=1, mp_context=ctx) for _ in jobs]
     try:
-        futures = [
-            (job, pool.submit(fn, job)) for job, pool in zip(jobs, pools, strict=True)
-        ]
+        futures = [(job, pool.submit(fn, job)) for job, pool in zip(jobs, pools, strict=True)]
         for job, fut in futures:
             try:
                 res = fut.result()
@@ -362,7 +358,8 @@ def _parser() -> argparse.ArgumentParser:
         metavar="ADDRESS",
         default=None,
         help="run on this Dask distributed scheduler (e.g. tcp://host:8786) instead of "
-        "local processes; --jobs is then ignored",
+        "local processes; --jobs is then ignored. Its workers need medialcad installed and "
+        "must see IN_DIR and OUT_DIR at the same paths",
     )
     p.add_argument(
         "--tol",

@@ -12,9 +12,10 @@ import pytest
 
 from medialcad.cli import main
 from medialcad.occ.io import read_shapes
-from medialcad.occ.shapes import edges
+from medialcad.occ.shapes import edges, faces
 
 FACES = Path(__file__).resolve().parent.parent / "fixtures" / "step" / "faces"
+SOLIDS = FACES.parent / "solids"
 
 
 def test_face_to_step_png_and_report(tmp_path: Path) -> None:
@@ -64,22 +65,6 @@ def test_bad_input_exit_2_one_line_nothing_written(
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".")] == []
 
 
-def test_solid_is_refused_and_existing_output_kept(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
-) -> None:
-    import cadquery as cq
-
-    from medialcad.occ.io import write_step
-
-    src = tmp_path / "box.step"
-    write_step(cq.Workplane().box(1, 2, 3).val().wrapped, src)
-    out = tmp_path / "out.step"
-    out.write_text("precious")
-    assert main([str(src), "-o", str(out)]) == 2
-    assert "solid" in capsys.readouterr().err
-    assert out.read_text() == "precious"
-
-
 def test_console_script_runs_as_a_module(tmp_path: Path) -> None:
     out = tmp_path / "m.step"
     proc = subprocess.run(
@@ -95,3 +80,188 @@ def test_console_script_runs_as_a_module(tmp_path: Path) -> None:
 def _write(path: Path, text: str) -> Path:
     path.write_text(text)
     return path
+
+
+# --------------------------------------------------------------------------- solids
+
+
+def _cli(*args: object) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "medialcad", *map(str, args)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+
+
+def _no_leftovers(folder: Path) -> None:
+    hidden = [p.name for p in folder.iterdir() if p.name.startswith(".")]
+    assert hidden == [], f"staging files left behind: {hidden}"
+
+
+def test_box_step_report_and_radius_sidecar(tmp_path: Path) -> None:
+    out, rep = tmp_path / "out" / "box.mat.step", tmp_path / "box.json"
+    proc = _cli(SOLIDS / "box.step", "-o", out, "--report", rep)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    assert "solid 1 of 1: extrusion" in proc.stdout
+    (shape,) = read_shapes(out)
+    assert "PRODUCT('solid-1-medial-axis'" in out.read_text()
+
+    report = json.loads(rep.read_text())
+    assert report["input"] == str(SOLIDS / "box.step") and report["status"] == "ok"
+    (solid,) = report["solids"]
+    assert solid["index"] == 1 and solid["status"] == "ok" and solid["kind"] == "extrusion"
+    direction = np.array(solid["direction"])
+    assert np.isclose(np.linalg.norm(direction), 1.0)
+    # the box is 60 x 40 x 100: any axis is a valid extrusion direction
+    axis = int(np.argmax(np.abs(direction)))
+    assert solid["length"] == pytest.approx([60.0, 40.0, 100.0][axis])
+    counts = solid["counts"]
+    assert set(counts) == {
+        "branches",
+        "branch_points",
+        "junctions",
+        "seams",
+        "sheets",
+        "skeletal_edges",
+    }
+    assert counts["branch_points"] == 2 and counts["junctions"] == 4
+    assert len(faces(shape)) == counts["sheets"]
+    assert solid["rmax"] > 0 and solid["tol"] > 0 and solid["error_bound"] == solid["tol"]
+    assert {"recognition", "total"} <= set(solid["timings"])
+
+    radius = json.loads((out.parent / "box.mat.radius.json").read_text())  # the default
+    assert radius["format"] == "medialcad-radius/1" and radius["kind"] == "extrusion"
+    assert len(radius["sheets"]) == counts["sheets"]
+    assert len(radius["junctions"]) == counts["junctions"]
+    assert report["radius"] == str(out.parent / "box.mat.radius.json")
+    _no_leftovers(out.parent)
+    _no_leftovers(tmp_path)
+
+
+def test_multi_solid_one_product_per_solid(tmp_path: Path) -> None:
+    out, rep, rad = tmp_path / "m.step", tmp_path / "m.json", tmp_path / "radius" / "r.json"
+    proc = _cli(SOLIDS / "multi_solid.step", "-o", out, "--report", rep, "--radius", rad)
+    assert proc.returncode == 0, proc.stderr
+    assert len(read_shapes(out)) == 2
+    text = out.read_text()
+    assert "PRODUCT('solid-1-medial-axis'" in text and "PRODUCT('solid-2-medial-axis'" in text
+    report = json.loads(rep.read_text())
+    assert [s["index"] for s in report["solids"]] == [1, 2]
+    assert all(s["status"] == "ok" for s in report["solids"])
+    # the box 30 x 20 x 20 and the cylinder r = 5 (its axis is a skeletal edge)
+    assert report["solids"][1]["rmax"] == pytest.approx(5.0, abs=1e-6)
+    assert report["solids"][1]["counts"]["skeletal_edges"] == 1
+    radius = json.loads(rad.read_text())
+    assert radius["format"] == "medialcad-radius-multi/1"
+    assert [(s["index"], s["product"]) for s in radius["solids"]] == [
+        (1, "solid-1-medial-axis"),
+        (2, "solid-2-medial-axis"),
+    ]
+    assert not (tmp_path / "m.radius.json").exists()  # --radius replaces the default
+
+
+def test_neither_solid_exit_2_nothing_written(tmp_path: Path) -> None:
+    out, rep = tmp_path / "out.step", tmp_path / "r.json"
+    out.write_text("precious")
+    proc = _cli(SOLIDS / "loft.step", "-o", out, "--report", rep)
+    assert proc.returncode == 2
+    err = proc.stderr.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err, err
+    assert "solid 1 of 1 refused" in err and "neither an extrusion nor a revolution" in err
+    assert out.read_text() == "precious"
+    assert not (tmp_path / "out.radius.json").exists()
+    report = json.loads(rep.read_text())  # the report is the diagnostic: always written
+    assert report["status"] == "refused" and report["written"] is False
+    (solid,) = report["solids"]
+    assert solid["index"] == 1 and solid["status"] == "refused"
+    assert solid["error_type"] == "NotExtrusionOrRevolutionError"
+    _no_leftovers(tmp_path)
+
+
+def test_one_bad_solid_means_no_output_but_all_reported(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from medialcad.occ.io import write_step
+    from medialcad.recognition import read_step
+
+    src = tmp_path / "mixed.step"
+    write_step(read_step(SOLIDS / "multi_solid.step")[1:] + read_step(SOLIDS / "loft.step"), src)
+    out, rep = tmp_path / "mixed.mat.step", tmp_path / "r.json"
+    assert main([str(src), "-o", str(out), "--report", str(rep)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "solid 2 of 2 refused" in err
+    assert "solid 1" not in err
+    assert not out.exists() and not out.with_suffix(".radius.json").exists()
+    report = json.loads(rep.read_text())
+    assert [(s["index"], s["status"]) for s in report["solids"]] == [(1, "ok"), (2, "refused")]
+    assert report["solids"][0]["counts"]["skeletal_edges"] == 1
+
+
+def test_debug_shows_the_traceback(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main([str(SOLIDS / "loft.step"), "-o", str(tmp_path / "o.step"), "--debug"]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" in err and "NotExtrusionOrRevolutionError" in err
+
+
+def test_faces_only_file_keeps_the_2d_behaviour(tmp_path: Path) -> None:
+    out, rep = tmp_path / "f.step", tmp_path / "f.json"
+    assert main([str(SOLIDS / "faces_only.step"), "-o", str(out), "--report", str(rep)]) == 0
+    assert len(json.loads(rep.read_text())["faces"]) == 2
+    assert not (tmp_path / "f.radius.json").exists()  # no radius sidecar for faces
+
+
+def test_solid_to_brep_without_radius(tmp_path: Path) -> None:
+    out = tmp_path / "cyl.brep"
+    proc = _cli(SOLIDS / "cylinder.step", "-o", out, "--format", "brep", "--no-radius")
+    assert proc.returncode == 0, proc.stderr
+    assert out.read_bytes().lstrip().startswith(b"DBRep_DrawableShape")
+    (shape,) = read_shapes(out)
+    assert len(faces(shape)) > 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cyl.brep"]
+
+
+@pytest.mark.parametrize(
+    ("make_input", "needle"),
+    [
+        (lambda d: d / "missing.step", "no such file"),
+        (lambda d: _write(d / "empty.step", ""), "empty"),
+        (lambda d: _write(d / "text.step", "hello, not a STEP file\n"), "STEP"),
+        (lambda d: _write(d / "bad.step", "ISO-10303-21; garbage"), "could not be parsed"),
+    ],
+)
+def test_bad_file_exit_2_one_line_existing_output_kept(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], make_input: object, needle: str
+) -> None:
+    src = make_input(tmp_path)  # type: ignore[operator]
+    out = tmp_path / "out.step"
+    out.write_text("precious")
+    assert main([str(src), "-o", str(out), "--report", str(tmp_path / "r.json")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and needle.lower() in err.lower(), err
+    assert out.read_text() == "precious" and not (tmp_path / "r.json").exists()
+    _no_leftovers(tmp_path)
+
+
+def test_bad_tol_and_clashing_paths_exit_2(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    src = str(SOLIDS / "cube.step")
+    assert main([src, "-o", str(tmp_path / "o.step"), "--tol", "-1"]) == 2
+    assert "--tol must be a positive number" in capsys.readouterr().err
+    o = str(tmp_path / "o.step")
+    assert main([src, "-o", o, "--report", o]) == 2
+    assert "must all differ" in capsys.readouterr().err
+    assert main([src, "-o", src]) == 2
+    assert "overwrite the input" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_help_documents_all_or_nothing(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exc:
+        main(["--help"])
+    assert exc.value.code == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "All or nothing" in text and ".radius.json" in text and "exit codes" in text
+    assert "medialcad batch --help" in text

@@ -166,7 +166,15 @@ class MedialAxis3D:
 
     @property
     def rmax(self) -> float:
-        return float(self.mat2d.rmax)
+        """Largest radius on the complex (the largest inscribed ball of the solid)."""
+        vals = [0.0]
+        for s in self.sheets:
+            vals += [float(np.max(s.radius0)), float(np.max(s.radius1))]
+            if s.radius_grid is not None:
+                vals.append(float(np.max(s.radius_grid)))
+        vals += [float(np.max(c.radius_poles)) for c in self._curves()]
+        vals += [j.radius for j in self.junctions]
+        return max(vals)
 
     def counts(self) -> dict[str, int]:
         g = self.mat2d
