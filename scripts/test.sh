@@ -4,6 +4,7 @@ set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/setup_venv.sh
+bash scripts/system_deps.sh
 
 export MPLBACKEND=Agg
 # random faces per hypothesis strategy (the suite default is 6; more in CI)
