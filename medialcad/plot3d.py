@@ -306,9 +306,7 @@ def _subsample(mesh: Mesh, keep: int) -> Mesh:
     )
 
 
-def tessellate(
-    result: MedialAxis3D, *, solid: Any = None, max_triangles: int = 200_000
-) -> Scene:
+def tessellate(result: MedialAxis3D, *, solid: Any = None, max_triangles: int = 200_000) -> Scene:
     """Mesh the solid and the sheets, discretise the curves.
 
     Args:

@@ -17,6 +17,6 @@ fi
 echo "== installing ${need[*]} (Debian packages)"
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq >/dev/null 2>&1 || true
-apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null 2>&1 \
+apt-get install -y -qq "${need[@]}" >/dev/null 2>&1 \
     || echo "note: could not install ${need[*]}; their tests will skip" >&2
 exit 0
