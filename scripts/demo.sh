@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Medial axis of the gear fixture: writes out/gear_mat.step and a picture out/gear_mat.png.
+# The main job on a bundled fixture: the 3D medial axis of the paper's gear wheel (Fig. 19).
+# Writes out/gear_wheel_mat.step (named entities), out/gear_wheel_mat.radius.json (radius
+# sidecar), out/gear_wheel_mat.json (report) and out/gear_wheel_mat.png (picture).
 # Sets up ./.venv from scratch if needed.
 set -euo pipefail
 
@@ -8,5 +10,5 @@ bash scripts/setup_venv.sh
 
 export MPLBACKEND=Agg
 mkdir -p out
-.venv/bin/medialcad fixtures/step/faces/gear_with_hole.step -o out/gear_mat.step --png out/gear_mat.png
-echo "wrote out/gear_mat.step and out/gear_mat.png"
+.venv/bin/medialcad fixtures/step/solids/gear_wheel.step -o out/gear_wheel_mat.step \
+    --report out/gear_wheel_mat.json --png out/gear_wheel_mat.png
