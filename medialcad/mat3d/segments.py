@@ -175,8 +175,14 @@ def _project(boundary: Boundary, element: int, c: FloatArray) -> tuple[FloatArra
     return _foot_param(boundary, element, c, float(t[int(np.argmin(d))]))
 
 
-def _project_many(boundary: Boundary, element: int, cs: FloatArray) -> FloatArray:
-    """Nearest points on an element to many centres (vectorised coarse search + Newton)."""
+def _project_many(
+    boundary: Boundary, element: int, cs: FloatArray, near: FloatArray | None = None
+) -> FloatArray:
+    """Nearest points on an element to many centres (vectorised coarse search + Newton).
+
+    With ``near`` (points close to the wanted feet), Newton starts at the curve point
+    nearest to ``near`` instead: the foot on *this* side, where a centre has two nearest
+    points on one curve (an ellipse's axis, both sides of a branch on one edge)."""
     e = boundary.elements[element]
     cs = np.asarray(cs, dtype=float)
     if e.piece is None:
@@ -184,7 +190,13 @@ def _project_many(boundary: Boundary, element: int, cs: FloatArray) -> FloatArra
     lo, hi = sorted((e.piece.t0, e.piece.t1))
     grid = np.linspace(lo, hi, 65)
     pg = e.piece.curve.point(grid)
-    t = grid[np.argmin(np.linalg.norm(cs[:, None, :] - pg[None, :, :], axis=2), axis=1)]
+    ref = cs if near is None else np.asarray(near, dtype=float)
+    t = grid[np.argmin(np.linalg.norm(ref[:, None, :] - pg[None, :, :], axis=2), axis=1)]
+    if near is not None:  # refine the start on a finer grid around it
+        dt = (hi - lo) / 64.0
+        fine = np.clip(t[:, None] + np.linspace(-dt, dt, 33)[None, :], lo, hi)
+        pf = e.piece.curve.point(fine.ravel()).reshape(len(t), 33, 2)
+        t = fine[np.arange(len(t)), np.argmin(np.linalg.norm(pf - ref[:, None, :], axis=2), axis=1)]
     for _ in range(10):
         p, d1, d2 = e.piece.curve.derivs(t)
         g = np.einsum("ij,ij->i", p - cs, d1)
@@ -260,16 +272,23 @@ def _fan(
         length = boundary.loop_lengths[loop]
         sa = float(boundary.s_of(boundary.elements[ea], np.array([pa]))[0])
         sb = float(boundary.s_of(boundary.elements[eb], np.array([pb]))[0])
-        if nd.footpoints:
-            f0 = nd.footpoints[0]
-            sn = float(boundary.s_of(boundary.elements[f0.element], np.array([f0.param]))[0])
-        else:
-            sn = sa + 0.5 * ((sb - sa) % length)
-        # the stretch between the feet that holds the node's own foot
-        lo, hi = (sa, sb) if (sn - sa) % length <= (sb - sa) % length else (sb, sa)
-        span = (hi - lo) % length
-        if span < 1e-9 * length or span > length * (1 - 1e-9):
+        # the fan is the stretch between the feet whose points all lie on the node's
+        # circle: test the middle of both stretches (the node's own foot may be off when
+        # a flat curvature maximum was located only within the tolerance)
+        best: tuple[float, float, float] | None = None
+        for a, z in ((sa, sb), (sb, sa)):
+            span = (z - a) % length
+            if span < 1e-9 * length:
+                continue
+            mid = _loop_points(
+                boundary, loop, a + 0.5 * span - 1e-9 * length, a + 0.5 * span, length
+            )
+            gap = abs(float(np.linalg.norm(mid[-1] - nd.point_2d)) - r)
+            if best is None or gap < best[0]:
+                best = (gap, a, span)
+        if best is None or best[0] > max(10.0 * graph.tol, 1e-6 * boundary.diag):
             return []
+        lo, span = best[1], best[2]
         pieces = [(lo, lo + span)]
     end = End("node", node, nd.kind)
     segs = []
@@ -457,8 +476,10 @@ def _refine(
     """
     from scipy.interpolate import make_interp_spline
 
-    for _ in range(10):
-        if len(w) < 2:
+    cap = max(4 * len(w), 200)  # near a curvature-centre end the feet move like a square
+    # root of the branch length: interpolation converges slowly there, stop refining
+    for _ in range(8):
+        if len(w) < 2 or len(w) >= cap:
             break
         k = min(3, len(w) - 1)
         wm = 0.5 * (w[1:] + w[:-1])
@@ -466,12 +487,12 @@ def _refine(
         fit_a = make_interp_spline(w, foot_a, k=k)(wm)
         fit_b = make_interp_spline(w, foot_b, k=k)(wm)
         ex = sp(u0 + wm * span)  # type: ignore[operator]
-        ex_a = _project_many(boundary, el_a, ex[:, :2])
-        ex_b = _project_many(boundary, el_b, ex[:, :2])
+        ex_a = _project_many(boundary, el_a, ex[:, :2], 0.5 * (foot_a[1:] + foot_a[:-1]))
+        ex_b = _project_many(boundary, el_b, ex[:, :2], 0.5 * (foot_b[1:] + foot_b[:-1]))
         bad = np.linalg.norm(fit_c - ex, axis=1) > 0.1 * tol
         bad |= np.linalg.norm(fit_a - ex_a, axis=1) > 0.02 * tol
         bad |= np.linalg.norm(fit_b - ex_b, axis=1) > 0.02 * tol
-        bad &= np.diff(w) > 1e-7
+        bad &= np.diff(w) > 1e-5
         if not np.any(bad):
             break
         idx = np.nonzero(bad)[0]
