@@ -102,7 +102,7 @@ def _parser() -> argparse.ArgumentParser:
         "--png",
         metavar="PICTURE.png",
         default=None,
-        help="picture of the 2D medial axis (of the first face, or the first solid's profile)",
+        help="picture: the first solid and its 3D medial axis coloured by radius beside its profile's 2D axis (or the 2D axis of the first face)",
     )
     p.add_argument("--debug", action="store_true", help="show tracebacks")
     return p
@@ -407,9 +407,9 @@ def _convert_solids(
                 }
             _write_json(staging.path(Path(radius_path)), data, indent=1)
         if png is not None:
-            from medialcad.plot import plot_medial_axis_2d
+            from medialcad.plot3d import render_png
 
-            plot_medial_axis_2d(mats[0].mat2d, staging.path(Path(png)))
+            render_png(mats[0], staging.path(Path(png)))
         if report_path is not None:
             _write_json(staging.path(Path(report_path)), report)
         written = staging.commit()
