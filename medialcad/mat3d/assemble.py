@@ -44,7 +44,7 @@ def build_complex(
     """
     from medialcad.occ.complex import ComplexBuilder, Row
 
-    cb = ComplexBuilder(merge=1e-9 * diag, tol=max(1e-7 * diag, 1e-9))
+    cb = ComplexBuilder(merge=1e-8 * diag, tol=max(1e-7 * diag, 1e-9))
     sheets: list[Sheet] = []
     row_radius: dict[Any, tuple[FloatArray, int, FloatArray]] = {}
     for p in patches:
@@ -156,7 +156,7 @@ def build_grid_complex(
     from medialcad.mat3d.revolution import interp_grid
     from medialcad.occ.complex import ComplexBuilder, Row, bspline
 
-    cb = ComplexBuilder(merge=1e-9 * diag, tol=max(1e-7 * diag, 1e-9))
+    cb = ComplexBuilder(merge=1e-8 * diag, tol=max(1e-7 * diag, 1e-9))
     sheets: list[Sheet] = []
     row_radius: dict[Any, tuple[FloatArray, int, FloatArray]] = {}
     named_sides: list[tuple[Any, str, float]] = []

@@ -336,6 +336,29 @@ def _split(
                 feet[where] = best.point_2d
             else:  # the limit of this side's feet: the node's nearest point on the element
                 feet[where] = _foot_on(boundary, int(els[where]), nd.point_2d, float(pars[where]))
+            el = boundary.elements[int(els[where])]
+            if el.vertex is not None:  # a reflex vertex: its own point, exactly
+                feet[where] = np.asarray(el.vertex, dtype=float)
+
+    # curvature-centre ends: the boundary stretch the node sees as a whole (an arc's fan),
+    # or, at a curvature maximum, one common foot for both sides (no crack between them)
+    fans: list[Segment] = []
+    for where, node in ((0, b.start), (n - 1, b.end)):
+        if node is None or graph.nodes[node].kind is not NodeKind.CURVATURE_CENTRE:
+            continue
+        nd = graph.nodes[node]
+        fan: list[Segment] = []
+        if float(np.linalg.norm(fa[where] - fb[where])) > 1e-3 * graph.tol:
+            pa = _project(boundary, int(ea[where]), nd.point_2d)[1]
+            pb = _project(boundary, int(eb[where]), nd.point_2d)[1]
+            fan = _fan(graph, boundary, node, ((int(ea[where]), pa), (int(eb[where]), pb)))
+        if fan:
+            fans.extend(fan)
+        else:
+            own = [f.point_2d for f in nd.footpoints]
+            mid = 0.5 * (fa[where] + fb[where])
+            common = min(own, key=lambda q: float(np.linalg.norm(q - mid))) if own else mid
+            fa[where] = fb[where] = np.asarray(common, dtype=float)
 
     # cut points: (u, kind, centre, radius, foot_a, foot_b)
     cuts: list[tuple[float, str, FloatArray, float, FloatArray, FloatArray]] = []
@@ -442,16 +465,7 @@ def _split(
             boundary, sp, u0, span, el_a, el_b, w, centre, radius, foot_a, foot_b, graph.tol
         )
         segs.append(Segment(b.index, *arrays, el_a, el_b, e0, e1))
-    # the boundary stretch a curvature-centre end sees as a whole (an arc's fan)
-    for where, node in ((0, b.start), (n - 1, b.end)):
-        if node is None or graph.nodes[node].kind is not NodeKind.CURVATURE_CENTRE:
-            continue
-        if float(np.linalg.norm(fa[where] - fb[where])) <= 1e-3 * graph.tol:
-            continue
-        nd = graph.nodes[node]
-        pa = _project(boundary, int(ea[where]), nd.point_2d)[1]
-        pb = _project(boundary, int(eb[where]), nd.point_2d)[1]
-        segs.extend(_fan(graph, boundary, node, ((int(ea[where]), pa), (int(eb[where]), pb))))
+    segs.extend(fans)
     return segs
 
 

@@ -1,0 +1,545 @@
+"""The 3D medial axis transform of extrusions, as specifications (THEORY.md Sec. 1, 3, 4).
+
+- Closed forms (Sec. 4): the box (13 planar sheets, 12 seams, 4 junctions), the cube (12
+  triangles meeting at the centre), the cylinder (axis segment and two cones, or a mid disk
+  and two frusta), the extruded ellipse (skeletal edges at the curvature centres) and the
+  tube (a cylindrical sheet, or a planar annulus). Our faces are pieces of the geometric
+  sheets, so sheets are compared by the planes they lie in and by their areas, seams by
+  their total length.
+- Every closed form, every extrusion fixture of ``fixtures/step`` and random extrusions in
+  random placements pass the independent oracles of :mod:`tests.oracles3d`: soundness,
+  completeness and radius error within the result's tolerance, no output point outside the
+  solid, one connected component with the solid's Euler characteristic, a valid sewn complex
+  whose free edges are rims on the solid's boundary or skeletal edges and whose seams bound
+  at least 3 sheets (:func:`tests._mat3d.check`).
+- Paper Table 1 junction counts, STEP export with names, the radius sidecar.
+
+Errors are asserted in model units against ``result.tol`` and printed relative to the
+bounding-box diagonal (``pytest -s`` shows one line per case).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import strategies as st
+from OCP.BRepCheck import BRepCheck_Analyzer
+from scipy.integrate import quad
+
+from tests import _mat3d as M
+from tests import faces as F
+from tests import oracles3d as O
+
+ROOT = Path(__file__).resolve().parent.parent
+MANIFESTS = (ROOT / "fixtures/step/solids", ROOT / "fixtures/step/freecad")
+
+# --------------------------------------------------------------------------- the cases
+
+A, B, C = 4.0, 3.0, 2.0  # box, a > b > c
+THIN = (10.0, 6.0, 0.5)  # thin box: the mid sheet dominates
+CUBE = 2.0
+R_LONG, H_LONG = 1.0, 5.0  # cylinder, H > 2R
+R_SHORT, H_SHORT = 2.0, 1.0  # cylinder, H < 2R
+EA, EB, EL = 3.0, 1.0, 4.0  # extruded ellipse, semi-axes and length
+TUBE_TALL = (2.0, 2.5, 3.0)  # ri, ro, h with t = ro - ri < h
+TUBE_FLAT = (1.0, 3.0, 0.6)  # t > h
+
+CLOSED_FORMS = {
+    "box": lambda: M.box(A, B, C),
+    "thin_box": lambda: M.box(*THIN),
+    "cube": lambda: M.box(CUBE, CUBE, CUBE),
+    "cylinder_long": lambda: M.cylinder(R_LONG, H_LONG),
+    "cylinder_short": lambda: M.cylinder(R_SHORT, H_SHORT),
+    "ellipse": lambda: M.elliptic_prism(EA, EB, EL),
+    "tube_tall": lambda: M.tube(*TUBE_TALL),
+    "tube_flat": lambda: M.tube(*TUBE_FLAT),
+}
+
+
+def _fixtures() -> dict[str, tuple[Path, dict[str, Any]]]:
+    out = {}
+    for folder in MANIFESTS:
+        manifest = folder / "manifest.json"
+        if not manifest.is_file():
+            continue
+        for entry in json.loads(manifest.read_text())["solids"]:
+            if entry.get("kind") == "extrusion":
+                out[entry["name"]] = (folder / entry["file"], entry)
+    return out
+
+
+FIXTURES = _fixtures()
+
+# Known failures of the algorithm (not of the tests): non-strict xfails, so that a fix
+# shows up as XPASS. The numbers are in each case's report line (pytest -s).
+CC_END = (
+    "at a curvature-centre end (no arc) the side a and side b foot rows stop short of the "
+    "tip (y = -/+5.8e-5 and -/+5.8e-4 on the 3 x 1 ellipse), so the two cap sheets' end "
+    "rulings are separate edges (free, 4 per end) and a thin wedge at the tip is uncovered"
+)
+CC_END_FIT = (
+    "; near that end the capped refinement leaves the cap rows off the medial surface by 2-4 tol"
+)
+MID_OPEN = "ComputationError: the mid sheet's boundary does not close"
+KNOWN_ORACLES: dict[str, str] = {
+    "ellipse": CC_END,
+    "extruded_ellipse": CC_END,
+    "fc_bspline_periodic_extrusion": CC_END + CC_END_FIT + " (2.2e-5 diag, sheets 4/5)",
+    "freeform_extrusion_2": CC_END + CC_END_FIT + " (4.0e-5 diag, sheets 4/5)",
+    "fc_bspline_extrusion": MID_OPEN + ": a branch above L/2 from a branch point to a "
+    "curvature centre, both sides on the B-spline edge; its two offset rows end 4e-4 apart",
+    "machine_tool_bed": "branch-point ends take the 2D node's footpoint, ~1.5e-9 diag off the "
+    "reflex vertex, beyond ComplexBuilder's merge distance 1e-9 diag: the cap sheet's end "
+    "ruling and the reflex vertex's cone patch do not share their edge (24 free edges)",
+}
+KNOWN_JUNCTIONS: dict[str, str] = {
+    "thin_plate": "the manifest says 0, but THEORY Sec. 1 counts the points of M2 with "
+    "r = L/2 as junctions: the 4 corner diagonals cross r = L/2 (like the box's 4)",
+    "fc_bspline_extrusion": MID_OPEN,
+}
+
+
+def _params(names: list[str], known: dict[str, str]) -> list[Any]:
+    return [
+        pytest.param(n, marks=pytest.mark.xfail(strict=False, reason=known[n])) if n in known else n
+        for n in names
+    ]
+
+
+@dataclass
+class Case:
+    solid: Any
+    result: Any
+    seconds: float
+    boundary: O.SolidBoundary | None = None
+    report: M.Report | None = None
+
+    @property
+    def sb(self) -> O.SolidBoundary:
+        if self.boundary is None:
+            self.boundary = O.SolidBoundary(self.solid)
+        return self.boundary
+
+
+class Cache:
+    """Solids, results and oracle reports, computed once per module."""
+
+    def __init__(self) -> None:
+        self.cases: dict[str, Case] = {}
+
+    def __call__(self, name: str, fixture: bool = False) -> Case:
+        """A closed form of :data:`CLOSED_FORMS`, or (``fixture``) a STEP fixture."""
+        key = f"step:{name}" if fixture else name
+        if key not in self.cases:
+            if fixture:
+                from medialcad.recognition import read_step
+
+                solid = read_step(FIXTURES[name][0])[0]
+            else:
+                solid = CLOSED_FORMS[name]()
+            t0 = time.perf_counter()
+            result = M.extrusion_mat(solid)
+            self.cases[key] = Case(solid, result, time.perf_counter() - t0)
+        return self.cases[key]
+
+    def report(self, name: str, fixture: bool = False, **kw: Any) -> M.Report:
+        case = self(name, fixture)
+        if case.report is None:
+            label = f"step:{name}" if fixture else name
+            case.report = M.check(case.solid, case.result, label, boundary=case.sb, **kw)
+            case.report.seconds["mat"] = case.seconds
+            print(case.report.line())
+        return case.report
+
+
+@pytest.fixture(scope="module")
+def mats() -> Cache:
+    return Cache()
+
+
+def _close(actual: float, expected: float, tol: float, what: str) -> None:
+    assert abs(actual - expected) <= tol, f"{what}: {actual:.9g}, expected {expected:.9g}"
+
+
+# --------------------------------------------------------------------------- closed forms
+
+
+def _canon(n: Any, d: float) -> tuple[np.ndarray, float]:
+    n = np.asarray(n, dtype=float)
+    k = float(np.linalg.norm(n))
+    n, d = n / k, d / k
+    j = int(np.argmax(np.abs(n) > 1e-6))
+    return (-n, -d) if n[j] < 0 else (n, d)
+
+
+def box_sheets(a: float, b: float, c: float) -> list[tuple[np.ndarray, float, float]]:
+    """The 13 sheets of ``[0,a] x [0,b] x [0,c]`` (``a > b > c``): ``(normal, offset,
+    area)`` of the plane ``n.x = d`` each lies in. Points where two faces are the nearest:
+    the mid sheet ``z = c/2``, the 8 sheets between a cap and a side at 45 degrees
+    (trapezoids), the 4 sheets between two sides at the vertical edges (triangles)."""
+    r2 = math.sqrt(2.0)
+    cap_x = r2 * (b * c / 2 - c * c / 4)  # between a z-face and an x-face
+    cap_y = r2 * (a * c / 2 - c * c / 4)
+    corner = r2 * c * c / 4
+    planes = [((0, 0, 1), c / 2, (a - c) * (b - c))]
+    planes += [((1, 0, -1), 0.0, cap_x), ((1, 0, 1), a, cap_x)]
+    planes += [((1, 0, 1), c, cap_x), ((1, 0, -1), a - c, cap_x)]
+    planes += [((0, 1, -1), 0.0, cap_y), ((0, 1, 1), b, cap_y)]
+    planes += [((0, 1, 1), c, cap_y), ((0, 1, -1), b - c, cap_y)]
+    planes += [((1, -1, 0), 0.0, corner), ((1, 1, 0), a, corner)]
+    planes += [((1, 1, 0), b, corner), ((1, -1, 0), a - b, corner)]
+    return [(*_canon(n, d), area) for n, d, area in planes]
+
+
+def _match_planes(
+    groups: list[tuple[np.ndarray, float, float]],
+    expected: list[tuple[np.ndarray, float, float]],
+    eps: float,
+    area_tol: float,
+) -> None:
+    assert len(groups) == len(expected), (
+        f"{len(groups)} distinct planes, expected {len(expected)}: "
+        + ", ".join(f"{np.round(n, 3)}.x={d:.4g} (area {a:.4g})" for n, d, a in groups)
+    )
+    for n, d, area in expected:
+        hit = [g for g in groups if np.linalg.norm(g[0] - n) <= 1e-6 and abs(g[1] - d) <= eps]
+        assert hit, f"no sheet in the plane {np.round(n, 3)}.x = {d:.4g}"
+        _close(hit[0][2], area, area_tol, f"area in the plane {np.round(n, 3)}.x = {d:.4g}")
+
+
+@pytest.mark.parametrize("name", ["box", "thin_box"])
+def test_box_has_13_planar_sheets_12_seams_4_junctions(mats: Cache, name: str) -> None:
+    a, b, c = (A, B, C) if name == "box" else THIN
+    r = mats(name).result
+    tol = r.tol
+    groups = M.planes_and_areas(r, eps=tol)
+    _match_planes(groups, box_sheets(a, b, c), eps=tol, area_tol=tol * (a + b))
+    r2, r3 = math.sqrt(2.0), math.sqrt(3.0)
+    total = (a - c) * (b - c) + r2 * (2 * b * c + 2 * a * c - c * c)
+    _close(M.total_area([s.face for s in r.sheets]), total, tol * (a + b), "total sheet area")
+    # 12 seams: the mid rectangle's 4 sides and 8 lines from the corners to the junctions
+    seam_length = sum(M.edge_length(s.edge) for s in r.seams)
+    _close(seam_length, 2 * (a + b - 2 * c) + 4 * r3 * c, 10 * tol, "total seam length")
+    h = c / 2
+    expected = [(x, y, h) for x in (h, a - h) for y in (h, b - h)]
+    got = np.array([j.point for j in r.junctions]).reshape(-1, 3)
+    assert len(got) == 4, f"{len(got)} junctions"
+    for p in expected:
+        assert np.min(np.linalg.norm(got - p, axis=1)) <= tol, f"no junction at {p}"
+    for j in r.junctions:
+        _close(j.radius, h, tol, "junction radius")
+    assert not r.skeletal_edges
+
+
+def test_cube_has_12_triangles_meeting_at_the_centre(mats: Cache) -> None:
+    c = CUBE
+    r = mats("cube").result
+    tol = r.tol
+    # the 12 triangles (an edge of the cube and the centre) lie in the 6 diagonal planes,
+    # two in each: area 2 * sqrt(2) c^2 / 4 per plane
+    tri = math.sqrt(2.0) * c * c / 4
+    expected = [
+        (*_canon(n, d), 2 * tri)
+        for n, d in (
+            ((1, -1, 0), 0.0),
+            ((1, 1, 0), c),
+            ((1, 0, -1), 0.0),
+            ((1, 0, 1), c),
+            ((0, 1, -1), 0.0),
+            ((0, 1, 1), c),
+        )
+    ]
+    _match_planes(M.planes_and_areas(r, eps=tol), expected, eps=tol, area_tol=tol * c)
+    _close(M.total_area([s.face for s in r.sheets]), 12 * tri, tol * c, "total sheet area")
+    centre = np.full(3, c / 2)
+    for j in r.junctions:
+        assert np.linalg.norm(j.point - centre) <= tol, f"{j.name} at {j.point}, not the centre"
+        _close(j.radius, c / 2, tol, "junction radius")
+    assert r.junctions, "no junction"
+
+
+@pytest.mark.xfail(
+    strict=False,
+    reason="the 2D branch point's radius is ~3e-9 diag below L/2, so (b, r) and (b, L - r) "
+    "are two junctions joined by a seam of that length",
+)
+def test_cube_has_exactly_one_junction(mats: Cache) -> None:
+    r = mats("cube").result
+    assert len(r.junctions) == 1, [j.point.tolist() for j in r.junctions]
+
+
+def test_cylinder_long_is_an_axis_segment_and_two_cones(mats: Cache) -> None:
+    R, H = R_LONG, H_LONG
+    r = mats("cylinder_long").result
+    tol = r.tol
+    assert len(r.skeletal_edges) == 1, f"{len(r.skeletal_edges)} skeletal edges"
+    axis = r.skeletal_edges[0]
+    _close(M.edge_length(axis.edge), H - 2 * R, tol, "axis segment length")
+    pts, t = M.edge_points(axis.edge, 9)
+    assert np.abs(pts[:, :2]).max() <= tol, "the skeletal edge is off the axis"
+    assert pts[:, 2].min() >= R - tol and pts[:, 2].max() <= H - R + tol
+    assert np.abs(axis.radius(t) - R).max() <= tol, "axis radius"
+    assert not r.seams and not r.junctions
+    assert {s.role for s in r.sheets} == {"cap"}
+    cone = math.pi * R * R * math.sqrt(2.0)  # base R, height R
+    _close(M.total_area([s.face for s in r.sheets]), 2 * cone, tol * R, "area of the two cones")
+
+
+def test_cylinder_short_is_a_mid_disk_and_two_frusta(mats: Cache) -> None:
+    R, H = R_SHORT, H_SHORT
+    r = mats("cylinder_short").result
+    tol = r.tol
+    rho = R - H / 2
+    mids = [s for s in r.sheets if s.role == "mid"]
+    assert mids, "no mid sheet"
+    _close(M.total_area([s.face for s in mids]), math.pi * rho * rho, tol * R, "mid disk area")
+    for s in mids:
+        p, _ = M.face_samples(s.face, 16)
+        assert np.abs(p[:, 2] - H / 2).max() <= tol, "the mid sheet is not in z = H/2"
+    frusta = 2 * math.pi * (R + rho) * (H / 2) * math.sqrt(2.0)
+    _close(
+        M.total_area([s.face for s in r.sheets]),
+        math.pi * rho * rho + frusta,
+        tol * R,
+        "total sheet area",
+    )
+    # one circular seam of radius R - H/2 at z = H/2 (possibly in pieces)
+    _close(sum(M.edge_length(s.edge) for s in r.seams), 2 * math.pi * rho, tol, "seam length")
+    for s in r.seams:
+        p, _ = M.edge_points(s.edge, 9)
+        assert np.abs(np.hypot(p[:, 0], p[:, 1]) - rho).max() <= tol, "seam radius"
+        assert np.abs(p[:, 2] - H / 2).max() <= tol, "seam height"
+    assert not r.skeletal_edges and not r.junctions
+
+
+def test_ellipse_has_skeletal_edges_at_the_curvature_centres(mats: Cache) -> None:
+    a, b, L = EA, EB, EL
+    r = mats("ellipse").result
+    tol = r.tol
+    c, rho = (a * a - b * b) / a, b * b / a
+    assert len(r.skeletal_edges) == 2, f"{len(r.skeletal_edges)} skeletal edges"
+    xs = []
+    for e in r.skeletal_edges:
+        p, t = M.edge_points(e.edge, 5)
+        xs.append(float(p[0, 0]))
+        assert np.abs(np.abs(p[:, 0]) - c).max() <= tol and np.abs(p[:, 1]).max() <= tol
+        _close(M.edge_length(e.edge), L - 2 * rho, tol, "skeletal edge length")
+        assert np.abs(e.radius(t) - rho).max() <= tol, "skeletal edge radius"
+    assert sorted(np.sign(xs)) == [-1.0, 1.0], "both curvature centres"
+    # the vertical sheet {(x, 0, z): |x| <= c, r(x) <= z <= L - r(x)}
+    e2 = a * a - b * b
+
+    def radius(x: float) -> float:
+        return b * math.sqrt(max(0.0, 1 - x * x / e2))
+
+    vertical = 2 * c * L - 2 * quad(radius, -c, c)[0]
+    walls = [s.face for s in r.sheets if s.role == "vertical"]
+    _close(M.total_area(walls), vertical, tol * a, "vertical sheet area")
+
+    # its seams (x, 0, r(x)) and (x, 0, L - r(x))
+    def slope(x: float) -> float:  # r'(x) = -b^2 x / (e^2 r(x))
+        return b * b * x / (e2 * radius(x))
+
+    arc = quad(lambda x: math.sqrt(1 + slope(x) ** 2), -c, c)[0]
+    _close(sum(M.edge_length(s.edge) for s in r.seams), 2 * arc, 10 * tol, "seam length")
+
+
+def _frustum(r1: float, r2: float, slant: float) -> float:
+    return math.pi * (r1 + r2) * slant
+
+
+def test_tube_tall_is_a_cylindrical_sheet_and_four_frusta(mats: Cache) -> None:
+    ri, ro, h = TUBE_TALL
+    t, rm = ro - ri, (ri + ro) / 2
+    r = mats("tube_tall").result
+    tol = r.tol
+    walls = [s for s in r.sheets if s.role == "vertical"]
+    _close(M.total_area([s.face for s in walls]), 2 * math.pi * rm * (h - t), tol * ro, "wall")
+    for s in walls:
+        p, uv = M.face_samples(s.face, 16)
+        assert np.abs(np.hypot(p[:, 0], p[:, 1]) - rm).max() <= tol, "wall radius"
+        assert p[:, 2].min() >= t / 2 - tol and p[:, 2].max() <= h - t / 2 + tol
+        assert np.abs(s.radius(uv[:, 0], uv[:, 1]) - t / 2).max() <= tol, "wall MAT radius"
+    slant = t / 2 * math.sqrt(2.0)
+    total = 2 * math.pi * rm * (h - t) + 2 * _frustum(ro, rm, slant) + 2 * _frustum(ri, rm, slant)
+    _close(M.total_area([s.face for s in r.sheets]), total, tol * ro, "total sheet area")
+    _close(sum(M.edge_length(s.edge) for s in r.seams), 4 * math.pi * rm, 10 * tol, "seams")
+    assert not r.junctions and not r.skeletal_edges
+
+
+def test_tube_flat_is_a_planar_annulus_and_four_frusta(mats: Cache) -> None:
+    ri, ro, h = TUBE_FLAT
+    r = mats("tube_flat").result
+    tol = r.tol
+    r1, r2 = ri + h / 2, ro - h / 2  # the annulus {d >= h/2} at z = h/2
+    mids = [s for s in r.sheets if s.role == "mid"]
+    _close(M.total_area([s.face for s in mids]), math.pi * (r2 * r2 - r1 * r1), tol * ro, "mid")
+    slant = h / 2 * math.sqrt(2.0)
+    total = (
+        math.pi * (r2 * r2 - r1 * r1) + 2 * _frustum(ro, r2, slant) + 2 * _frustum(ri, r1, slant)
+    )
+    _close(M.total_area([s.face for s in r.sheets]), total, tol * ro, "total sheet area")
+    _close(sum(M.edge_length(s.edge) for s in r.seams), 2 * math.pi * (r1 + r2), 10 * tol, "seams")
+    for s in r.seams:
+        p, _ = M.edge_points(s.edge, 9)
+        rad = np.hypot(p[:, 0], p[:, 1])
+        assert np.minimum(np.abs(rad - r1), np.abs(rad - r2)).max() <= tol, "seam radius"
+        assert np.abs(p[:, 2] - h / 2).max() <= tol, "seam height"
+    assert not r.junctions and not r.skeletal_edges
+
+
+# --------------------------------------------------------------------------- oracles
+
+
+@pytest.mark.parametrize("name", _params(list(CLOSED_FORMS), KNOWN_ORACLES))
+def test_closed_form_passes_the_oracles(mats: Cache, name: str) -> None:
+    rep = mats.report(name)
+    assert not rep.failures(), f"{name}: " + "; ".join(rep.failures())
+
+
+FIXTURE_NAMES = sorted(FIXTURES)
+
+
+@pytest.mark.skipif(not FIXTURES, reason="no solid fixtures")
+@pytest.mark.parametrize("name", _params(FIXTURE_NAMES, KNOWN_ORACLES))
+def test_fixture_passes_the_oracles(mats: Cache, name: str) -> None:
+    # sheets subsampled on the big models (the gear wheel has ~400 sheets)
+    rep = mats.report(name, fixture=True, per_face=12, max_faces=24, max_edges=24)
+    assert not rep.failures(), f"{name}: " + "; ".join(rep.failures())
+
+
+JUNCTION_FACTS = sorted(n for n, (_, e) in FIXTURES.items() if "junction_points" in e["facts"])
+
+
+@pytest.mark.parametrize("name", _params(JUNCTION_FACTS, KNOWN_JUNCTIONS))
+def test_junction_count_of_the_paper(mats: Cache, name: str) -> None:
+    """Paper Table 1 (gear wheel 32, I-section 12, free-form 12) and the manifest's counts."""
+    facts = FIXTURES[name][1]["facts"]
+    r = mats(name, fixture=True).result
+    assert len(r.junctions) == facts["junction_points"]
+    if "paper_junction_points" in facts:
+        assert len(r.junctions) == facts["paper_junction_points"]
+
+
+DEGENERATE = sorted(
+    n for n, (_, e) in FIXTURES.items() if "degenerate_junction_points" in e["facts"]
+)
+
+
+@pytest.mark.parametrize("name", DEGENERATE)
+def test_degenerate_junctions_sit_at_the_expected_points(mats: Cache, name: str) -> None:
+    """Junctions with more than 4 touch points (``L = 2 r`` at a branch point, or a branch
+    point with 4 footpoints): every junction is within tol of one expected point and every
+    expected point has one."""
+    expected = np.array(FIXTURES[name][1]["facts"]["degenerate_junction_points"], dtype=float)
+    r = mats(name, fixture=True).result
+    got = np.array([j.point for j in r.junctions]).reshape(-1, 3)
+    d = np.linalg.norm(got[:, None, :] - expected[None, :, :], axis=2)
+    assert len(got) and d.min(axis=1).max() <= r.tol, "a junction away from the expected points"
+    assert d.min(axis=0).max() <= r.tol, "an expected junction point is missing"
+
+
+# --------------------------------------------------------------------------- export
+
+
+def test_step_export_keeps_faces_and_names(mats: Cache, tmp_path: Path) -> None:
+    from medialcad.occ.io import read_shapes
+
+    r = mats("box").result
+    path = tmp_path / "box_mat.step"
+    r.write_step(path)
+    text = path.read_text(errors="replace")
+    assert "sheet-1" in text and "seam-1" in text and "junction-1" in text
+    shapes = read_shapes(path)
+    assert len(shapes) == 1
+    assert BRepCheck_Analyzer(shapes[0]).IsValid()
+    assert len(M.faces_in(shapes[0])) == len(r.sheets)
+
+
+def test_radius_sidecar_and_radius_at(mats: Cache, tmp_path: Path) -> None:
+    case = mats("box")
+    r = case.result
+    path = tmp_path / "box_mat.radius.json"
+    r.write_radius(path)
+    data = json.loads(path.read_text())
+    assert data["format"] == "medialcad-radius/1" and data["kind"] == "extrusion"
+    assert set(data["sheets"]) == {s.name for s in r.sheets}
+    assert {c.name for c in r.seams} <= set(data["curves"])
+    assert set(data["junctions"]) == {j.name for j in r.junctions}
+    rng = np.random.default_rng(1)
+    for s in [r.sheets[i] for i in rng.choice(len(r.sheets), 6, replace=False)]:
+        pts, _ = M.face_samples(s.face, 4)
+        want = case.sb.distances(pts)
+        got = np.array([r.radius_at(p) for p in pts])
+        assert np.abs(got - want).max() <= r.tol, f"{s.name}: radius_at vs distance"
+
+
+# --------------------------------------------------------------------------- random solids
+
+_EXAMPLES = int(os.environ.get("MEDIALCAD_HYPOTHESIS_EXAMPLES", "6"))
+# 3D examples cost ~10x the 2D ones: a quarter of the 2D budget per profile strategy
+HYPO3 = settings(
+    max_examples=max(1, _EXAMPLES // 4),
+    phases=[Phase.explicit, Phase.reuse, Phase.generate]
+    + ([Phase.shrink] if os.environ.get("MEDIALCAD_HYPOTHESIS_SHRINK") else []),
+    derandomize=not os.environ.get("MEDIALCAD_HYPOTHESIS_RANDOM"),
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
+)
+
+
+def _random_extrusion(face: Any, factor: float, seed: int, label: str) -> None:
+    diag = O.bbox_diagonal(face)
+    solid = M.prism(face, factor * diag, F.random_placement(seed))
+    t0 = time.perf_counter()
+    result = M.extrusion_mat(solid)
+    seconds = time.perf_counter() - t0
+    rep = M.check(
+        solid, result, f"{label} L={factor:.2f}d", per_face=10, max_faces=16, max_edges=16,
+        per_edge=2, n_complete=60, seed=seed,
+    )  # fmt: skip
+    rep.seconds["mat"] = seconds
+    print(rep.line())
+    assert not rep.failures(), f"{label}: " + "; ".join(rep.failures())
+
+
+_LENGTH = st.floats(0.05, 3.0)
+_SEED = st.integers(0, 2**16)
+
+
+@pytest.mark.xfail(
+    strict=False,
+    reason=MID_OPEN + " when L/2 is below the radius at a curvature-centre end (as "
+    "fc_bspline_extrusion); for longer blobs: " + CC_END,
+)
+@HYPO3
+@given(face=F.random_bspline_blob(), factor=_LENGTH, seed=_SEED)
+def test_random_blob_extrusion(face: Any, factor: float, seed: int) -> None:
+    _random_extrusion(face, factor, seed, "blob")
+
+
+@HYPO3
+@given(face=F.star_polygon_strategy(), factor=_LENGTH, seed=_SEED)
+def test_random_star_extrusion(face: Any, factor: float, seed: int) -> None:
+    _random_extrusion(face, factor, seed, "star")
+
+
+@HYPO3
+@given(face=F.polygon_with_holes_strategy(), factor=_LENGTH, seed=_SEED)
+def test_random_polygon_with_holes_extrusion(face: Any, factor: float, seed: int) -> None:
+    _random_extrusion(face, factor, seed, "holes")
+
+
+@HYPO3
+@given(face=F.line_arc_fillet_mix(), factor=_LENGTH, seed=_SEED)
+def test_random_line_arc_extrusion(face: Any, factor: float, seed: int) -> None:
+    _random_extrusion(face, factor, seed, "fillets")
