@@ -151,6 +151,7 @@ def build_grid_complex(
     diag: float,
     mid_plane: tuple[FloatArray, FloatArray, FloatArray] | None,
     seam_roles: Callable[[Any], str | None],
+    mid_slope: float = 0.0,
 ) -> tuple:
     """Like :func:`build_complex` for tensor patches (revolutions)."""
     from medialcad.mat3d.revolution import interp_grid
@@ -160,7 +161,6 @@ def build_grid_complex(
     sheets: list[Sheet] = []
     row_radius: dict[Any, tuple[FloatArray, int, FloatArray]] = {}
     named_sides: list[tuple[Any, str, float]] = []
-    mid_radius = 0.0
     for g in grids:
         tu, tv, ku, kv, poles = interp_grid(g.w, g.v, g.points)
         _, _, _, _, rpoles = interp_grid(g.w, g.v, g.radius)
@@ -181,8 +181,6 @@ def build_grid_complex(
         )
         row_radius.setdefault(g.bottom_key, (tu, ku, rpoles[:, 0]))
         row_radius.setdefault(g.top_key, (tu, ku, rpoles[:, -1]))
-        if g.top_key[0] == "OFF":
-            mid_radius = float(g.radius[:, -1].mean())
         for (role, rad), col in ((g.left, poles[0]), (g.right, poles[-1])):
             if role is None:
                 continue
@@ -198,6 +196,8 @@ def build_grid_complex(
             if e is not None:
                 named_sides.append((e.edge, role, rad))
     if mid_plane is not None and offsets:
+        # the mid sheet of a small-angle revolution lies in the half-plane at Theta/2: its
+        # radius is x sin(Theta/2), x the distance from the axis = the plane's u
         for face in cb.planar_faces(offsets, *mid_plane):
             sheets.append(
                 Sheet(
@@ -206,8 +206,9 @@ def build_grid_complex(
                     "mid",
                     _LINEAR,
                     1,
-                    np.array([mid_radius] * 2),
-                    np.array([mid_radius] * 2),
+                    np.zeros(2),
+                    np.zeros(2),
+                    slope=mid_slope,
                 )
             )
     seams: list[Seam] = []

@@ -40,11 +40,13 @@ class Sheet:
     v_knots: FloatArray | None = None  # tensor sheets: radius poles (nu, nv) on (knots, v_knots)
     v_degree: int = 1
     radius_grid: FloatArray | None = None
+    slope: float = 0.0  # mid sheets: radius = radius0[0] + slope * u (u along the plane's x)
 
     def radius(self, u: ArrayLike, v: ArrayLike) -> FloatArray:
         """Radius at face parameters ``(u, v)``."""
         if self.role == "mid":
-            return np.full(np.shape(np.asarray(u, dtype=float)), float(self.radius0[0]))
+            uu = np.asarray(u, dtype=float)
+            return np.asarray(float(self.radius0[0]) + self.slope * uu + 0.0 * np.asarray(v))
         if self.radius_grid is not None and self.v_knots is not None:
             shape = np.broadcast(np.asarray(u, dtype=float), np.asarray(v, dtype=float)).shape
             uu = np.broadcast_to(np.asarray(u, dtype=float), shape).ravel()
@@ -61,6 +63,13 @@ class Sheet:
 
     def to_json(self) -> dict[str, Any]:
         if self.role == "mid":
+            if self.slope:
+                return {
+                    "role": self.role,
+                    "type": "linear",
+                    "radius": float(self.radius0[0]),
+                    "slope_u": self.slope,
+                }
             return {"role": self.role, "type": "constant", "radius": float(self.radius0[0])}
         if self.radius_grid is not None and self.v_knots is not None:
             return {

@@ -195,7 +195,14 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         a_mid = math.cos(theta / 2) * cn.A + math.sin(theta / 2) * cn.B
         mid_plane = (cn.O, a_mid, cn.D)
     return build_grid_complex(
-        grids, offsets, junctions, axis_lines, diag=diag, mid_plane=mid_plane, seam_roles=_roles
+        grids,
+        offsets,
+        junctions,
+        axis_lines,
+        diag=diag,
+        mid_plane=mid_plane,
+        seam_roles=_roles,
+        mid_slope=sigma,
     )
 
 
