@@ -411,7 +411,7 @@ def draw_profile(ax: Any, mat: Any, *, norm: Any = None, disks: int = 8) -> Any:
 
 
 def _draw_3d(ax: Any, scene: Scene, norm: Any, cmap: Any) -> None:
-    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # type: ignore[import-untyped]
 
     polys, colours = [], []
     if len(scene.sheets.triangles):
