@@ -120,6 +120,17 @@ def _joint(boundary: Boundary, e_from: int, e_to: int) -> tuple[FloatArray, Floa
     return p, n[0]
 
 
+def _end_kind(graph: MedialGraph, node: int) -> NodeKind:
+    """The node's kind as an end of a branch: a "branch point" that ends a single branch
+    (a flat arc the 2D engine saw as many footpoints) is an end point, a curvature centre."""
+    kind = graph.nodes[node].kind
+    if kind is NodeKind.BRANCH_POINT:
+        degree = sum((b.start == node) + (b.end == node) for b in graph.branches)
+        if degree == 1:
+            return NodeKind.CURVATURE_CENTRE
+    return kind
+
+
 def split_branches(
     graph: MedialGraph, boundary: Boundary, level: float | LevelFn | None = None
 ) -> list[Segment]:
@@ -290,7 +301,7 @@ def _fan(
             return []
         lo, span = best[1], best[2]
         pieces = [(lo, lo + span)]
-    end = End("node", node, nd.kind)
+    end = End("node", node, NodeKind.CURVATURE_CENTRE)
     segs = []
     for s0, s1 in pieces:
         part = _loop_points(boundary, loop, s0, s1, step)
@@ -344,7 +355,7 @@ def _split(
     # or, at a curvature maximum, one common foot for both sides (no crack between them)
     fans: list[Segment] = []
     for where, node in ((0, b.start), (n - 1, b.end)):
-        if node is None or graph.nodes[node].kind is not NodeKind.CURVATURE_CENTRE:
+        if node is None or _end_kind(graph, node) is not NodeKind.CURVATURE_CENTRE:
             continue
         nd = graph.nodes[node]
         fan: list[Segment] = []
@@ -438,9 +449,9 @@ def _split(
         merged.append(cut)
 
     start_end = (
-        End("node", b.start, graph.nodes[b.start].kind) if b.start is not None else End("split")
+        End("node", b.start, _end_kind(graph, b.start)) if b.start is not None else End("split")
     )
-    stop_end = End("node", b.end, graph.nodes[b.end].kind) if b.end is not None else End("split")
+    stop_end = End("node", b.end, _end_kind(graph, b.end)) if b.end is not None else End("split")
     bounds = [(0.0, start_end, ca[0], float(rad[0]), fa[0], fb[0])]
     bounds += [(m[0], End(m[1]), m[2], m[3], m[4], m[5]) for m in merged]
     bounds += [(1.0, stop_end, ca[-1], float(rad[-1]), fa[-1], fb[-1])]

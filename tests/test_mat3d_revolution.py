@@ -1,0 +1,1198 @@
+"""The 3D medial axis transform of revolutions (THEORY.md Sec. 2), as specifications.
+
+* **Closed forms** (THEORY Sec. 4), always through the *revolution* reading (a tube or a
+  cylinder is also an extrusion, which :func:`medialcad.medial_axis` would prefer): tube,
+  torus, sphere, cylinder, cone, a quarter tube, a stepped shaft, a rounded-rectangle torus.
+  The sheets are sampled at their own face parameters and every sample, with the radius its
+  sheet carries, must lie on one of the closed-form pieces; the pieces are sampled in turn
+  and must lie on the output; areas and lengths come from OCCT. For polygonal profiles the
+  distance to the boundary is itself in closed form, ``D = min(d(q), x sin(phi),
+  x sin(Theta - phi))`` (Sec. 2): every sheet sample must carry ``r = D`` and have two
+  distinct nearest boundary points.
+* **Fixtures**: every solid of the fixture manifests with a revolution reading, against
+  the independent oracles of :mod:`tests.oracles3d` (soundness, completeness, radius,
+  topology), ``BRepCheck`` and the free edges (sheets sewn, seams bounding 3 sheets).
+* **Small angles**: the mid sheet exists exactly below ``Theta = 2 asin(Rmax / x)``.
+* **Refusals**: a partial revolution of a profile touching its axis (a pie slice).
+* **Random profiles** (hypothesis): faces of :mod:`tests.faces` revolved by a random angle
+  about a random axis; B-spline profiles.
+
+Errors are asserted in absolute units against the result's own tolerance ``tol`` (default
+``1e-5`` of the bounding-box diagonal) and printed relative to the diagonal or to ``tol``
+(``pytest -s`` shows one line per case). Known bugs of the algorithm are non-strict xfails
+whose reason gives the failing metric. Completeness measures distances to the output with
+:class:`CompoundDistance` (checked against ``BRepExtrema_DistShapeShape`` here), as that is
+seconds per point against large B-spline sheets.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import strategies as st
+from numpy.typing import ArrayLike, NDArray
+from OCP.Bnd import Bnd_Box
+from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
+from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepClass import BRepClass_FaceClassifier
+from OCP.BRepPrimAPI import BRepPrimAPI_MakeRevol, BRepPrimAPI_MakeSphere
+from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
+from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Pnt2d
+from OCP.ShapeAnalysis import ShapeAnalysis_Surface
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN, TopAbs_ON, TopAbs_VERTEX
+from OCP.TopExp import TopExp
+from OCP.TopoDS import TopoDS
+from OCP.TopTools import TopTools_IndexedMapOfShape
+from scipy.spatial import cKDTree
+
+import medialcad.api as api
+from medialcad.errors import UnsupportedSolidError
+from medialcad.mat3d.solid import medial_axis_of
+from medialcad.recognition import Revolution, read_step, recognize
+from tests import faces as F
+from tests import oracles3d as O
+from tests._mat3d import edge_faces, edge_length, edge_points, face_area, face_samples
+from tests._mat3d import single_solid as _single_solid
+
+FloatArray = NDArray[np.float64]
+
+ROOT = Path(__file__).resolve().parent.parent / "fixtures" / "step"
+TWO_PI = 2.0 * math.pi
+
+
+# --------------------------------------------------------------------------- solids
+
+
+def _iter(shape: Any, kind: Any) -> list[Any]:
+    m = TopTools_IndexedMapOfShape()
+    TopExp.MapShapes_s(shape, kind, m)
+    return [m.FindKey(i) for i in range(1, m.Extent() + 1)]
+
+
+def revolve(face: Any, angle: float = TWO_PI, placement: F.Placement = F.IDENTITY) -> Any:
+    """``face`` (in the local xy-plane, at ``x >= 0``) revolved right-handed about the local
+    y-axis by ``angle``, then placed: a local point ``(x, y)`` at angle ``phi`` goes to
+    ``(x cos(phi), y, -x sin(phi))``."""
+    axis = gp_Ax1(gp_Pnt(0.0, 0.0, 0.0), gp_Dir(0.0, 1.0, 0.0))
+    shape = BRepPrimAPI_MakeRevol(face, axis, float(angle)).Shape()
+    if placement is not F.IDENTITY:
+        shape = BRepBuilderAPI_Transform(shape, placement.trsf(), True).Shape()
+    return _single_solid(shape)
+
+
+def revolution_mat(solid: Any, tol: float | None = None) -> Any:
+    """The MAT of ``solid`` read as a revolution, whichever reading the recogniser prefers."""
+    reading = recognize(solid)
+    if not isinstance(reading, Revolution):
+        assert isinstance(reading.alternative, Revolution), f"not a revolution: {reading.kind}"
+        reading = reading.alternative
+    return medial_axis_of(reading, tol, {})
+
+
+def cylindrical(
+    points: ArrayLike, placement: F.Placement, angle: float = TWO_PI
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """``(rho, y, phi)`` of model points in the local frame of :func:`revolve`; ``phi`` in
+    ``[0, 2 pi)``, or just below 0 for a partial revolution's start side."""
+    p = placement.to_local(np.asarray(points, dtype=float).reshape(-1, 3))
+    rho = np.hypot(p[:, 0], p[:, 2])
+    phi = np.mod(np.arctan2(-p[:, 2], p[:, 0]), TWO_PI)
+    if angle < TWO_PI:
+        phi = np.where(phi > 0.5 * (angle + TWO_PI), phi - TWO_PI, phi)
+    return rho, p[:, 1], phi
+
+
+def _xyz(p: Any) -> FloatArray:
+    return np.array([p.X(), p.Y(), p.Z()])
+
+
+def _box(shape: Any) -> list[float]:
+    """``[xmin, ymin, zmin, xmax, ymax, zmax]`` holding the whole shape (its poles)."""
+    box = Bnd_Box()
+    BRepBndLib.Add_s(shape, box, False)
+    return list(box.Get())
+
+
+def to_model(
+    rho: ArrayLike, y: ArrayLike, phi: ArrayLike, placement: F.Placement = F.IDENTITY
+) -> FloatArray:
+    rho, y, phi = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (rho, y, phi)))
+    local = np.stack([rho * np.cos(phi), y, -rho * np.sin(phi)], axis=-1)
+    return placement.to_model(local.reshape(-1, 3))
+
+
+# --------------------------------------------------------------------------- sampling
+
+
+def sheet_samples(result: Any, per_face: int) -> tuple[FloatArray, FloatArray, list[str]]:
+    """Points of every sheet at its own face parameters, the radius the sheet carries
+    there and the sheet's role."""
+    pts, rad, roles = [np.empty((0, 3))], [np.empty(0)], []
+    for s in result.sheets:
+        p, uv = face_samples(s.face, per_face)
+        if len(p):
+            pts.append(p)
+            rad.append(np.asarray(s.radius(uv[:, 0], uv[:, 1]), dtype=float).reshape(-1))
+            roles += [s.role] * len(p)
+    return np.vstack(pts), np.concatenate(rad), roles
+
+
+def curve_samples(curves: Any, per_edge: int) -> tuple[FloatArray, FloatArray]:
+    pts, rad = [np.empty((0, 3))], [np.empty(0)]
+    for c in curves:
+        p, t = edge_points(c.edge, per_edge)
+        pts.append(p)
+        rad.append(np.asarray(c.radius(t), dtype=float).reshape(-1))
+    return np.vstack(pts), np.concatenate(rad)
+
+
+class CompoundDistance:
+    """Distance from points to the output complex: an upper bound (every candidate is a
+    point of the complex) that is exact whenever the nearest face or edge is found.
+
+    ``BRepExtrema_DistShapeShape`` against a complex of large B-spline sheets costs seconds
+    per point. Here the best distance to dense samples of the complex and to its vertices
+    is an upper bound; every face or edge whose bounding box (from its poles, so it holds the
+    whole shape) is nearer than that is a candidate. Candidate faces are projected on locally
+    (``ShapeAnalysis_Surface``, seeded at the face's nearest sample; kept only if the
+    classifier puts the projection in the face), candidate edges globally
+    (``GeomAPI_ProjectPointOnCurve`` on the edge's range)."""
+
+    def __init__(self, compound: Any, n_face: int = 100, n_edge: int = 40) -> None:
+        self.faces = [TopoDS.Face_s(f) for f in _iter(compound, TopAbs_FACE)]
+        edges = [TopoDS.Edge_s(e) for e in _iter(compound, TopAbs_EDGE)]
+        self.edges = [e for e in edges if not BRep_Tool.Degenerated_s(e)]
+        verts = [BRep_Tool.Pnt_s(TopoDS.Vertex_s(v)) for v in _iter(compound, TopAbs_VERTEX)]
+        self.vertices = np.array([[p.X(), p.Y(), p.Z()] for p in verts]).reshape(-1, 3)
+        self._surfaces = [ShapeAnalysis_Surface(BRep_Tool.Surface_s(f)) for f in self.faces]
+        self._trees: list[Any] = []
+        self._uv: list[FloatArray] = []
+        pts = [np.empty((0, 3))]
+        for f in self.faces:
+            p, uv = face_samples(f, n_face)
+            self._trees.append(cKDTree(p) if len(p) else None)
+            self._uv.append(uv)
+            pts.append(p)
+        self._curves = []
+        for e in self.edges:
+            c = BRepAdaptor_Curve(e)
+            t0, t1 = c.FirstParameter(), c.LastParameter()
+            pts.append(np.array([_xyz(c.Value(float(t))) for t in np.linspace(t0, t1, n_edge)]))
+            self._curves.append((BRep_Tool.Curve_s(e, t0, t1), t0, t1))
+        self._all = np.vstack(pts)
+        self._tree = cKDTree(self._all) if len(self._all) else None
+        self._boxes = np.array([_box(s) for s in [*self.faces, *self.edges]]).reshape(-1, 6)
+
+    def distance(self, p: ArrayLike) -> float:
+        x = np.asarray(p, dtype=float)
+        best = math.inf
+        if len(self.vertices):
+            best = float(np.linalg.norm(self.vertices - x, axis=1).min())
+        if self._tree is None:
+            return best
+        best = min(best, float(self._tree.query(x)[0]))
+        lo, hi = self._boxes[:, :3], self._boxes[:, 3:]
+        box_d = np.linalg.norm(np.maximum(np.maximum(lo - x, x - hi), 0.0), axis=1)
+        nf = len(self.faces)
+        g = gp_Pnt(*(float(v) for v in x))
+        for i in np.argsort(box_d):
+            if box_d[i] > best:
+                break
+            if i >= nf:
+                curve, t0, t1 = self._curves[i - nf]
+                proj = GeomAPI_ProjectPointOnCurve(g, curve, t0, t1)
+                if proj.NbPoints():
+                    best = min(best, float(proj.LowerDistance()))
+                continue
+            tree = self._trees[i]
+            if tree is None:
+                continue
+            seed = self._uv[i][int(tree.query(x)[1])]
+            sas = self._surfaces[i]
+            uv = sas.NextValueOfUV(gp_Pnt2d(float(seed[0]), float(seed[1])), g, 1e-12)
+            if BRepClass_FaceClassifier(self.faces[i], uv, 1e-9).State() in (TopAbs_IN, TopAbs_ON):
+                best = min(best, sas.Value(uv).Distance(g))
+        return best
+
+    def distances(self, points: ArrayLike) -> FloatArray:
+        return np.array([self.distance(p) for p in np.asarray(points).reshape(-1, 3)])
+
+
+# --------------------------------------------------------------------------- closed form
+
+
+@dataclass(frozen=True)
+class PolygonRevolution:
+    """A polygonal profile (local ``x`` = distance from the axis, ``y`` along it) revolved
+    by ``angle``: its distance function in closed form (THEORY Sec. 2)."""
+
+    vertices: FloatArray  # (n, 2), either orientation
+    angle: float = TWO_PI
+
+    @property
+    def segments(self) -> list[tuple[FloatArray, FloatArray]]:
+        v = np.asarray(self.vertices, dtype=float)
+        pairs = [(v[i], v[(i + 1) % len(v)]) for i in range(len(v))]
+        # an edge on the axis is not boundary of the solid (full revolutions only)
+        return [(a, b) for a, b in pairs if not (abs(a[0]) < 1e-12 and abs(b[0]) < 1e-12)]
+
+    def contains(self, q: FloatArray) -> NDArray[np.bool_]:
+        """Even-odd test of profile points ``q (N, 2)`` (boundary points: either way)."""
+        v = np.asarray(self.vertices, dtype=float)
+        x, y = q[:, 0:1], q[:, 1:2]
+        a, b = v[None, :, :], np.roll(v, -1, axis=0)[None, :, :]
+        cross = (a[..., 1] > y) != (b[..., 1] > y)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xi = a[..., 0] + (y - a[..., 1]) * (b[..., 0] - a[..., 0]) / (b[..., 1] - a[..., 1])
+        return np.asarray(np.sum(cross & (x < xi), axis=1) % 2 == 1)
+
+    def profile_distance(self, q: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Distances ``(N, S)`` from profile points to each boundary segment and the feet
+        ``(N, S, 2)``."""
+        dist, feet = [], []
+        for a, b in self.segments:
+            ab = b - a
+            t = np.clip(((q - a) @ ab) / float(ab @ ab), 0.0, 1.0)
+            f = a + t[:, None] * ab
+            feet.append(f)
+            dist.append(np.linalg.norm(q - f, axis=1))
+        return np.stack(dist, axis=1), np.stack(feet, axis=1)
+
+    def terms(
+        self, rho: FloatArray, y: FloatArray, phi: FloatArray
+    ) -> tuple[FloatArray, FloatArray]:
+        """Every distance term of ``D`` at ``(rho, y, phi)`` (``inf`` where a cap term does
+        not apply) and its foot in local 3D: ``(N, T)`` and ``(N, T, 3)``."""
+        q = np.c_[rho, y]
+        d, f2 = self.profile_distance(q)
+        c, s = np.cos(phi)[:, None], np.sin(phi)[:, None]
+        feet = np.stack([f2[..., 0] * c, f2[..., 1], -f2[..., 0] * s], axis=-1)
+        if self.angle >= TWO_PI:
+            return d, feet
+        caps_d, caps_f = [], []
+        for rot, psi in ((0.0, phi), (self.angle, self.angle - phi)):
+            xc = rho * np.cos(psi)
+            ok = (psi <= 0.5 * math.pi) & self.contains(np.c_[xc, y])
+            caps_d.append(np.where(ok, rho * np.sin(psi), np.inf))
+            caps_f.append(np.c_[xc * math.cos(rot), y, -xc * math.sin(rot)])
+        return np.c_[d, np.stack(caps_d, axis=1)], np.concatenate(
+            [feet, np.stack(caps_f, axis=1)], axis=1
+        )
+
+    def check_medial(
+        self, rho: FloatArray, y: FloatArray, phi: FloatArray, radius: FloatArray, tol: float
+    ) -> tuple[float, int, int]:
+        """``(max |r - D|, samples outside the solid, samples with fewer than two distinct
+        nearest boundary points)`` for samples carrying ``radius``."""
+        terms, feet = self.terms(rho, y, phi)
+        D = terms.min(axis=1)
+        inside = self.contains(np.c_[rho, y]) & (phi >= -tol / np.maximum(rho, tol))
+        if self.angle < TWO_PI:
+            inside &= phi <= self.angle + tol / np.maximum(rho, tol)
+        single = 0
+        for k in range(len(D)):
+            if D[k] <= 10 * tol:  # next to a rim: one foot is all there is
+                continue
+            near = feet[k][terms[k] <= D[k] + 3 * tol]
+            spread = np.linalg.norm(near[:, None, :] - near[None, :, :], axis=-1).max()
+            single += int(spread <= 10 * tol)
+        return float(np.max(np.abs(radius - D), initial=0.0)), int(np.sum(~inside)), single
+
+
+def assert_on_pieces(
+    label: str,
+    rho: FloatArray,
+    y: FloatArray,
+    radius: FloatArray,
+    pieces: dict[str, Any],
+    tol: float,
+) -> dict[str, int]:
+    """Every sample lies on one of the closed-form ``pieces`` and carries that piece's radius.
+
+    A piece maps ``(rho, y)`` to ``(distance to the piece's generatrix, a segment of the
+    meridian half plane; the radius the piece carries there)``. Returns the samples per
+    piece."""
+    names = list(pieces)
+    res = np.stack([pieces[n](rho, y)[0] for n in names], axis=1)
+    rad = np.stack([pieces[n](rho, y)[1] for n in names], axis=1)
+    best = np.argmin(res, axis=1)
+    idx = np.arange(len(rho))
+    off, rerr = res[idx, best], np.abs(rad[idx, best] - radius)
+    worst = int(np.argmax(np.maximum(off, rerr)))
+    assert off.max() <= tol, (
+        f"{label}: a sheet sample (rho {rho[worst]:.6g}, y {y[worst]:.6g}) is {off.max():.3g}"
+        f" off every closed-form piece (tol {tol:.2g})"
+    )
+    assert rerr.max() <= tol, (
+        f"{label}: radius {radius[worst]:.6g} at (rho {rho[worst]:.6g}, y {y[worst]:.6g}) vs"
+        f" {rad[worst, best[worst]]:.6g} on {names[best[worst]]}"
+    )
+    print(
+        f"{label}: {len(rho)} sheet samples, off the closed form {off.max() / tol:.1e} tol,"
+        f" radius {rerr.max() / tol:.1e} tol"
+    )
+    return {n: int(np.sum(best == i)) for i, n in enumerate(names)}
+
+
+def _segment_piece(a: tuple[float, float], b: tuple[float, float], radius: Any) -> Any:
+    """The piece of :func:`assert_on_pieces` generated by revolving the segment ``a -> b`` of
+    the meridian half plane, carrying ``radius(rho, y)``."""
+    pa, pb = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+
+    def piece(rho: FloatArray, y: FloatArray) -> tuple[FloatArray, FloatArray]:
+        q = np.c_[rho, y]
+        ab = pb - pa
+        t = ((q - pa) @ ab) / float(ab @ ab)
+        off = np.linalg.norm(q - (pa + np.clip(t, 0.0, 1.0)[:, None] * ab), axis=1)
+        return off, np.asarray(radius(rho, y), dtype=float) * np.ones_like(rho)
+
+    return piece
+
+
+def piece_points(
+    a: tuple[float, float], b: tuple[float, float], n: int, rng: np.random.Generator
+) -> tuple[FloatArray, FloatArray]:
+    """``n`` random ``(rho, y)`` on the generatrix ``a -> b``."""
+    t = rng.uniform(0.02, 0.98, n)
+    p = np.asarray(a, dtype=float) + t[:, None] * (np.asarray(b) - np.asarray(a))
+    return p[:, 0], p[:, 1]
+
+
+def complete_against(
+    label: str, result: Any, points: FloatArray, tol: float, dist: CompoundDistance | None = None
+) -> float:
+    """Largest distance from closed-form MAT points to the output; asserted ``<= tol``."""
+    d = (dist or CompoundDistance(result.compound)).distances(points)
+    assert d.max() <= tol, f"{label}: a closed-form MAT point is {d.max():.3g} from the output"
+    print(
+        f"{label}: {len(d)} closed-form MAT points, distance to the output {d.max() / tol:.1e} tol"
+    )
+    return float(d.max())
+
+
+def assert_topology(label: str, result: Any, solid: Any) -> None:
+    n_comp, chi = O.topology(result.compound)
+    assert n_comp == 1, f"{label}: {n_comp} connected components"
+    assert chi == O.solid_euler(solid), f"{label}: Euler characteristic {chi}"
+    assert BRepCheck_Analyzer(result.compound).IsValid(), f"{label}: compound not valid"
+
+
+def _total_length(curves: Any) -> float:
+    return float(sum(edge_length(c.edge) for c in curves))
+
+
+# --------------------------------------------------------------------------- closed forms
+
+PLACED = F.TILTED_FAR
+
+
+def test_tube_is_a_cylindrical_mid_sheet_and_four_frusta() -> None:
+    """Tube ``Ri, Ro, H`` (``t = Ro - Ri < H``): the cylinder ``rho = (Ri + Ro)/2``,
+    ``t/2 <= y <= H - t/2``, ``r = t/2``, plus 4 conical frusta from its two seam circles to
+    the 4 rim circles (``r`` = distance to the nearest end face)."""
+    ri, ro, h = 20.0, 30.0, 50.0
+    t, rm = ro - ri, 0.5 * (ri + ro)
+    solid = revolve(F.polygon([(ri, 0), (ro, 0), (ro, h), (ri, h)]), placement=PLACED)
+    m = revolution_mat(solid)
+    tol = m.tol
+    assert m.kind == "revolution"
+    assert {s.role for s in m.sheets} == {"revolved"}
+    assert not m.junctions and not m.skeletal_edges
+    pieces = {
+        "mid cylinder": _segment_piece((rm, t / 2), (rm, h - t / 2), lambda r, y: t / 2),
+        "bottom inner": _segment_piece((ri, 0), (rm, t / 2), lambda r, y: y),
+        "bottom outer": _segment_piece((ro, 0), (rm, t / 2), lambda r, y: y),
+        "top inner": _segment_piece((ri, h), (rm, h - t / 2), lambda r, y: h - y),
+        "top outer": _segment_piece((ro, h), (rm, h - t / 2), lambda r, y: h - y),
+    }
+    pts, rad, _ = sheet_samples(m, 16)
+    rho, y, _ = cylindrical(pts, PLACED)
+    hits = assert_on_pieces("tube", rho, y, rad, pieces, tol)
+    assert all(hits.values()), f"tube: a closed-form piece has no sheet on it: {hits}"
+    # seams: the two circles rho = rm at y = t/2 and h - t/2, r = t/2
+    sp, sr = curve_samples(m.seams, 5)
+    srho, sy, _ = cylindrical(sp, PLACED)
+    assert np.abs(srho - rm).max() <= tol and np.abs(sr - t / 2).max() <= tol
+    assert np.all(np.minimum(np.abs(sy - t / 2), np.abs(sy - (h - t / 2))) <= tol)
+    assert _total_length(m.seams) == pytest.approx(2 * TWO_PI * rm, rel=1e-6)
+    area = sum(face_area(s.face) for s in m.sheets)
+    expected = TWO_PI * rm * (h - t) + 4 * math.sqrt(2) * math.pi * rm * t
+    assert area == pytest.approx(expected, rel=1e-5)
+    # completeness: every closed-form piece is on the output
+    rng = np.random.default_rng(1)
+    gen = [((rm, t / 2), (rm, h - t / 2)), ((ri, 0), (rm, t / 2)), ((ro, 0), (rm, t / 2))]
+    gen += [((ri, h), (rm, h - t / 2)), ((ro, h), (rm, h - t / 2))]
+    cloud = []
+    for a, b in gen:
+        r_, y_ = piece_points(a, b, 12, rng)
+        cloud.append(to_model(r_, y_, rng.uniform(0, TWO_PI, len(r_)), PLACED))
+    complete_against("tube", m, np.vstack(cloud), tol)
+    assert_topology("tube", m, solid)
+
+
+def test_torus_is_its_core_circle() -> None:
+    """Torus ``(R, a)``: the core circle alone (skeletal edges), ``r = a``."""
+    big, a = 30.0, 8.0
+    placement = F.random_placement(7, distance=300.0)
+    disk = F.place(F.circle(a), F.Placement(np.eye(3), np.array([big, 0.0, 0.0])))
+    solid = revolve(disk, placement=placement)
+    m = api.medial_axis(solid)
+    assert m.kind == "revolution"
+    assert not m.sheets and not m.seams and not m.junctions
+    assert m.skeletal_edges
+    pts, rad = curve_samples(m.skeletal_edges, 8)
+    rho, y, _ = cylindrical(pts, placement)
+    assert np.abs(rho - big).max() <= m.tol and np.abs(y).max() <= m.tol
+    assert np.abs(rad - a).max() <= m.tol
+    assert _total_length(m.skeletal_edges) == pytest.approx(TWO_PI * big, rel=1e-6)
+    assert O.topology(m.compound) == (1, 0) == (1, O.solid_euler(solid))
+
+
+def test_sphere_is_one_junction_at_its_centre() -> None:
+    """Sphere of radius ``R``: a single junction point at the centre with radius ``R``."""
+    from OCP.gp import gp_Pnt as P
+
+    centre, r = np.array([12.5, -40.0, 7.25]), 10.0
+    solid = _single_solid(BRepPrimAPI_MakeSphere(P(*centre), r).Shape())
+    m = api.medial_axis(solid)
+    assert m.kind == "revolution" and m.recognition.touches_axis
+    assert not m.sheets and not m.seams and not m.skeletal_edges
+    assert len(m.junctions) == 1
+    j = m.junctions[0]
+    assert np.linalg.norm(j.point - centre) <= m.tol
+    assert abs(j.radius - r) <= m.tol
+    assert O.topology(m.compound) == (1, 1)
+
+
+def test_cylinder_as_revolution_is_axis_segment_and_two_cones() -> None:
+    """Cylinder ``R, H > 2R`` read as a revolution: the axis segment ``R <= y <= H - R``
+    (skeletal, ``r = R``) and two cones from the end rims to its ends (``r`` = distance to
+    the nearest end face); no mid sheet."""
+    r, h = 10.0, 34.0
+    placement = F.random_placement(11, distance=500.0)
+    solid = revolve(F.polygon([(0, 0), (r, 0), (r, h), (0, h)]), placement=placement)
+    m = revolution_mat(solid)
+    tol = m.tol
+    assert m.kind == "revolution" and m.recognition.touches_axis
+    assert {s.role for s in m.sheets} == {"revolved"}
+    pieces = {
+        "bottom cone": _segment_piece((r, 0), (0, r), lambda rho, y: y),
+        "top cone": _segment_piece((r, h), (0, h - r), lambda rho, y: h - y),
+    }
+    pts, rad, _ = sheet_samples(m, 16)
+    rho, y, _ = cylindrical(pts, placement)
+    hits = assert_on_pieces("cylinder", rho, y, rad, pieces, tol)
+    assert all(hits.values()), hits
+    area = sum(face_area(s.face) for s in m.sheets)
+    assert area == pytest.approx(2 * math.sqrt(2) * math.pi * r * r, rel=1e-5)
+    sp, sr = curve_samples(m.skeletal_edges, 6)
+    srho, sy, _ = cylindrical(sp, placement)
+    assert np.abs(srho).max() <= tol and np.abs(sr - r).max() <= tol
+    assert sy.min() >= r - tol and sy.max() <= h - r + tol
+    assert _total_length(m.skeletal_edges) == pytest.approx(h - 2 * r, rel=1e-6)
+    rng = np.random.default_rng(2)
+    cloud = [to_model(0.0, rng.uniform(r, h - r, 10), 0.0, placement)]
+    for a, b in (((r, 0), (0, r)), ((r, h), (0, h - r))):
+        r_, y_ = piece_points(a, b, 12, rng)
+        cloud.append(to_model(r_, y_, rng.uniform(0, TWO_PI, len(r_)), placement))
+    complete_against("cylinder", m, np.vstack(cloud), tol)
+    assert_topology("cylinder", m, solid)
+
+
+def test_cone_is_a_conical_sheet_below_the_incentre_and_the_axis_above() -> None:
+    """Cone (base ``R``, height ``H``, slant ``L``): the incentre of the meridian triangle at
+    ``y0 = RH/(R + L)`` on the axis; below it the cone from the base rim (``r = y``), above
+    it the axis segment up to the apex with ``r = (H - y) R / L``."""
+    r, h = 10.0, 25.0
+    slant = math.hypot(r, h)
+    y0 = r * h / (r + slant)
+    solid = revolve(F.polygon([(0, 0), (r, 0), (0, h)]), placement=PLACED)
+    m = api.medial_axis(solid)
+    tol = m.tol
+    assert m.kind == "revolution" and m.recognition.touches_axis
+    pieces = {"cone": _segment_piece((r, 0), (0, y0), lambda rho, y: y)}
+    pts, rad, _ = sheet_samples(m, 16)
+    rho, y, _ = cylindrical(pts, PLACED)
+    assert_on_pieces("cone", rho, y, rad, pieces, tol)
+    area = sum(face_area(s.face) for s in m.sheets)
+    assert area == pytest.approx(math.pi * r * math.hypot(r, y0), rel=1e-5)
+    sp, sr = curve_samples(m.skeletal_edges, 8)
+    srho, sy, _ = cylindrical(sp, PLACED)
+    assert np.abs(srho).max() <= tol
+    assert np.abs(sr - (h - sy) * r / slant).max() <= tol
+    assert _total_length(m.skeletal_edges) == pytest.approx(h - y0, rel=1e-6)
+    # the incentre is a vertex of the complex, with radius y0 on both sides
+    vp = np.array(
+        [
+            [v.X(), v.Y(), v.Z()]
+            for v in (BRep_Tool.Pnt_s(TopoDS.Vertex_s(x)) for x in _iter(m.compound, TopAbs_VERTEX))
+        ]
+    )
+    incentre = to_model(0.0, y0, 0.0, PLACED)[0]
+    assert np.linalg.norm(vp - incentre, axis=1).min() <= tol
+    assert m.radius_at(incentre) == pytest.approx(y0, abs=tol)
+    rng = np.random.default_rng(3)
+    r_, y_ = piece_points((r, 0), (0, y0), 16, rng)
+    cloud = [to_model(r_, y_, rng.uniform(0, TWO_PI, 16), PLACED)]
+    cloud.append(to_model(0.0, rng.uniform(y0, h, 8), 0.0, PLACED))
+    complete_against("cone", m, np.vstack(cloud), tol)
+    assert_topology("cone", m, solid)
+
+
+def test_quarter_tube_has_the_revolved_mid_sector_and_caps() -> None:
+    """A tube revolved by ``Theta = 90`` degrees (``Theta > 2 asin(Rmax/x)``, no mid sheet):
+    the mid cylinder restricted to ``asin(t/2 / Rm) <= phi <= Theta - asin(t/2 / Rm)``, four
+    revolved frusta, start and end caps ``phi = asin(d(q)/x)`` (``Theta - ...``), and four
+    junctions where the seams meet the branch points' arcs."""
+    ri, ro, h, theta = 20.0, 30.0, 50.0, 0.5 * math.pi
+    t, rm = ro - ri, 0.5 * (ri + ro)
+    phi0 = math.asin(t / 2 / rm)
+    placement = F.random_placement(5, distance=200.0)
+    prof = PolygonRevolution(np.array([(ri, 0), (ro, 0), (ro, h), (ri, h)], float), theta)
+    solid = revolve(F.polygon(prof.vertices), theta, placement)
+    m = revolution_mat(solid)
+    tol = m.tol
+    assert {s.role for s in m.sheets} == {"revolved", "cap"}
+    pts, rad, roles = sheet_samples(m, 16)
+    rho, y, phi = cylindrical(pts, placement, theta)
+    err, outside, single = prof.check_medial(rho, y, phi, rad, tol)
+    print(f"{len(rho)} sheet samples: |r - D| {err / tol:.1e} tol, {single} with one foot")
+    assert outside == 0 and single == 0, f"{outside} samples outside, {single} not medial"
+    assert err <= tol, f"radius vs closed-form distance: {err:.3g}"
+    # the revolved samples: on the tube's meridian MAT, inside their angular span
+    rev = np.array([ro_ == "revolved" for ro_ in roles])
+    span = np.arcsin(np.clip(rad / rho, 0, 1))
+    assert np.all(phi[rev] >= span[rev] - tol / rm) and np.all(
+        phi[rev] <= theta - span[rev] + tol / rm
+    )
+    # caps: r = x sin(phi) (start, phi <= Theta/2) or x sin(Theta - phi) (end)
+    cap = ~rev
+    eq = np.minimum(np.abs(rad - rho * np.sin(phi)), np.abs(rad - rho * np.sin(theta - phi)))
+    assert eq[cap].max() <= 2 * tol
+    # the mid sector's area
+    sector = 0.0
+    for s in m.sheets:
+        p, _ = face_samples(s.face, 9)
+        if s.role == "revolved" and np.abs(cylindrical(p, placement, theta)[0] - rm).max() <= tol:
+            sector += face_area(s.face)
+    assert sector == pytest.approx(rm * (theta - 2 * phi0) * (h - t), rel=1e-5)
+    # junctions: (Rm, t/2 or H - t/2, phi0 or Theta - phi0), r = t/2
+    assert len(m.junctions) == 4
+    jp = np.array([j.point for j in m.junctions])
+    jr, jy, jphi = cylindrical(jp, placement, theta)
+    assert np.abs(jr - rm).max() <= tol
+    assert sorted(np.round(jy, 6)) == pytest.approx([t / 2] * 2 + [h - t / 2] * 2, abs=tol)
+    assert np.all(np.minimum(np.abs(jphi - phi0), np.abs(jphi - (theta - phi0))) <= tol / rm)
+    assert np.abs(np.array([j.radius for j in m.junctions]) - t / 2).max() <= tol
+    # completeness: the sector and both caps, in closed form
+    rng = np.random.default_rng(4)
+    cloud = [
+        to_model(
+            rm, rng.uniform(t / 2, h - t / 2, 12), rng.uniform(phi0, theta - phi0, 12), placement
+        )
+    ]
+    q = np.c_[rng.uniform(ri, ro, 30), rng.uniform(0, h, 30)]
+    d = prof.profile_distance(q)[0].min(axis=1)
+    cphi = np.arcsin(d / q[:, 0])
+    cloud.append(to_model(q[:, 0], q[:, 1], cphi, placement))
+    cloud.append(to_model(q[:, 0], q[:, 1], theta - cphi, placement))
+    complete_against("quarter tube", m, np.vstack(cloud), tol)
+    assert_topology("quarter tube", m, solid)
+
+
+def test_stepped_shaft_full_revolution() -> None:
+    """A full revolution of a stepped profile touching the axis: every sheet sample carries
+    the closed-form distance to the meridian polygon and has two distinct nearest points;
+    the axis part is the skeletal segment ``r1 <= y <= L - r3`` with ``r = d((0, y))``."""
+    radii, lengths = (15.0, 10.0, 6.0), (40.0, 60.0, 30.0)
+    ys = np.cumsum((0.0, *lengths))
+    outline = [(0.0, 0.0)]
+    for k, rk in enumerate(radii):
+        outline += [(rk, ys[k]), (rk, ys[k + 1])]
+    outline.append((0.0, ys[-1]))
+    prof = PolygonRevolution(np.array(outline))
+    placement = F.random_placement(13, distance=400.0)
+    solid = revolve(F.polygon(prof.vertices), placement=placement)
+    m = api.medial_axis(solid)
+    tol = m.tol
+    assert m.kind == "revolution" and m.recognition.touches_axis
+    assert not m.junctions and {s.role for s in m.sheets} == {"revolved"}
+    pts, rad, _ = sheet_samples(m, 16)
+    rho, y, phi = cylindrical(pts, placement)
+    err, outside, single = prof.check_medial(rho, y, phi, rad, tol)
+    print(f"{len(rho)} sheet samples: |r - D| {err / tol:.1e} tol, {single} with one foot")
+    assert outside == 0 and single == 0, f"{outside} samples outside, {single} not medial"
+    assert err <= tol, f"radius vs closed-form distance: {err:.3g}"
+    sp, sr = curve_samples(m.skeletal_edges, 8)
+    srho, sy, _ = cylindrical(sp, placement)
+    assert np.abs(srho).max() <= tol
+    d_axis = prof.profile_distance(np.c_[np.zeros_like(sy), sy])[0].min(axis=1)
+    assert np.abs(sr - d_axis).max() <= tol
+    assert _total_length(m.skeletal_edges) == pytest.approx(ys[-1] - radii[0] - radii[-1])
+    assert sy.min() >= radii[0] - tol and sy.max() <= ys[-1] - radii[-1] + tol
+    sb = O.SolidBoundary(solid)
+    _, mp, _ = O.medial_points(sb, 60, seed=1)
+    complete_against("stepped shaft", m, mp, tol)
+    assert_topology("stepped shaft", m, solid)
+
+
+RR = (0.8, 0.5, 0.2, 1.5)  # rounded rectangle: half sides a > b, fillet radius, centre x
+RR_PLACEMENT = F.random_placement(3)
+
+
+def _rounded_rectangle(angle: float) -> Any:
+    a, b, rf, x0 = RR
+    face = F.place(F.rounded_rectangle(a, b, rf), F.Placement(np.eye(3), np.array([x0, 0, 0])))
+    return revolve(face, angle, RR_PLACEMENT)
+
+
+def test_rounded_rectangle_torus_closed_form() -> None:
+    """A rounded rectangle ``[-a, a] x [-b, b]`` (fillets ``rf``) centred ``x0`` from the
+    axis, revolved fully: the planar annulus ``y = 0``, ``|rho - x0| <= a - b`` (``r = b``)
+    and 4 conical frusta along the corner bisectors down to the fillet centres
+    ``(x0 +- (a - rf), +-(b - rf))`` (``r`` = distance to the sides, ``rf`` at the end)."""
+    a, b, rf, x0 = RR
+    solid = _rounded_rectangle(TWO_PI)
+    m = revolution_mat(solid)
+    tol = m.tol
+    pieces = {"annulus": _segment_piece((x0 - a + b, 0), (x0 + a - b, 0), lambda r, y: b)}
+    for sx in (-1, 1):
+        for sy in (-1, 1):
+            pieces[f"frustum {sx:+d}{sy:+d}"] = _segment_piece(
+                (x0 + sx * (a - b), 0.0),
+                (x0 + sx * (a - rf), sy * (b - rf)),
+                lambda r, y: b - np.abs(y),
+            )
+    pts, rad, _ = sheet_samples(m, 16)
+    rho, y, _ = cylindrical(pts, RR_PLACEMENT)
+    hits = assert_on_pieces("rounded rectangle", rho, y, rad, pieces, tol)
+    assert all(hits.values()), hits
+    rng = np.random.default_rng(6)
+    cloud = []
+    for piece_ends in [((x0 - a + b, 0), (x0 + a - b, 0))] + [
+        ((x0 + sx * (a - b), 0.0), (x0 + sx * (a - rf), sy * (b - rf)))
+        for sx in (-1, 1)
+        for sy in (-1, 1)
+    ]:
+        r_, y_ = piece_points(*piece_ends, 8, rng)
+        cloud.append(to_model(r_, y_, rng.uniform(0, TWO_PI, len(r_)), RR_PLACEMENT))
+    complete_against("rounded rectangle", m, np.vstack(cloud), tol)
+    assert_topology("rounded rectangle", m, solid)
+
+
+SECTION_ARCS = pytest.mark.xfail(
+    strict=False,
+    reason="full revolution: the meridian section (occ/recognize.py:_section, a Boolean "
+    "common with a half plane) turns 2 of the 4 fillet arcs into 53- and 56-pole B-splines; "
+    "the 2D MAT ends their bisectors on a degree-1 BRANCH_POINT (6 and 12 footpoints) "
+    "instead of a CURVATURE_CENTRE and revolution._end_role names those circles 'seam': 8 "
+    "seams bound one sheet (0.2 off the boundary), skeletal length 18.85 of 37.70",
+)
+
+
+@pytest.mark.parametrize(
+    "angle",
+    [pytest.param(TWO_PI, id="full", marks=[SECTION_ARCS]), pytest.param(TWO_PI / 3, id="120deg")],
+)
+def test_fillet_centres_are_skeletal_edges(angle: float) -> None:
+    """The centre of a convex fillet is a curvature-centre end of the profile's MAT: revolved,
+    a skeletal arc (``r = rf``) bounding one sheet over
+    ``asin(rf/x) <= phi <= Theta - asin(rf/x)``; the seams are the branch points' arcs and
+    each bounds 3 sheets."""
+    a, b, rf, x0 = RR
+    solid = _rounded_rectangle(angle)
+    m = revolution_mat(solid)
+    tol = m.tol
+    centres = [(x0 + sx * (a - rf), sy * (b - rf)) for sx in (-1, 1) for sy in (-1, 1)]
+    sp, sr = curve_samples(m.skeletal_edges, 5)
+    rho, y, _ = cylindrical(sp, RR_PLACEMENT, angle)
+    near = np.min([np.hypot(rho - cx, y - cy) for cx, cy in centres], axis=0)
+    assert near.max() <= tol and np.abs(sr - rf).max() <= tol
+    span = [angle if angle >= TWO_PI else angle - 2 * math.asin(rf / cx) for cx, _ in centres]
+    expected = sum(cx * sp_ for (cx, _), sp_ in zip(centres, span, strict=True))
+    assert _total_length(m.skeletal_edges) == pytest.approx(expected, rel=1e-6), (
+        "skeletal edges do not cover the 4 fillet-centre arcs"
+    )
+    counts = edge_faces(m.compound)
+    for s in m.seams:
+        k = next((k for e, k in counts if e.IsSame(s.edge)), 0)
+        p, _ = edge_points(s.edge, 3)
+        where = cylindrical(p, RR_PLACEMENT, angle)
+        assert k >= 3, f"{s.name} (rho {where[0][1]:.4f}, y {where[1][1]:.4f}) bounds {k} sheets"
+
+
+# --------------------------------------------------------------------------- the oracles
+
+
+@dataclass
+class Numbers:
+    """Oracle numbers of one case, absolute unless said otherwise."""
+
+    label: str
+    diag: float
+    tol: float
+    soundness: float = 0.0  # max over finite samples (nan: rim samples, ignored)
+    outside: int = 0  # samples outside the solid (inf)
+    rim: int = 0
+    samples: int = 0
+    radius: float = 0.0
+    radius_mid: float = 0.0  # on mid sheets alone
+    completeness: float = 0.0
+    n_complete: int = 0
+    components: int = 0
+    euler: int = 0
+    solid_euler: int = 0
+    valid: bool = False
+    free_off: list[tuple[float, str]] = field(default_factory=list)  # (distance, role)
+    thin_seams: int = 0  # named seams bounding fewer than 3 sheets
+    counts: dict[str, int] = field(default_factory=dict)
+    seconds: dict[str, float] = field(default_factory=dict)
+
+    def line(self) -> str:
+        c, d = self.counts, self.diag
+        return (
+            f"{self.label}: tol {self.tol / d:.0e} | sound {self.soundness / d:.1e}"
+            f" ({self.samples}, rim {self.rim}, out {self.outside})"
+            f" | radius {self.radius / d:.1e} mid {self.radius_mid / d:.1e} | complete {self.completeness / d:.1e}"
+            f" ({self.n_complete}) | comp {self.components} chi {self.euler}/{self.solid_euler}"
+            f" valid {self.valid} | free-off {len(self.free_off)} thin {self.thin_seams}"
+            f" | sheets {c.get('sheets')} seams {c.get('seams')} junctions {c.get('junctions')}"
+            f" skeletal {c.get('skeletal_edges')} | mat {self.seconds.get('mat', 0):.1f}s"
+            f" oracle {self.seconds.get('oracle', 0):.1f}s"
+        )
+
+
+def oracle_numbers(
+    solid: Any,
+    result: Any,
+    label: str,
+    *,
+    per_face: int = 16,
+    max_samples: int = 800,
+    n_complete: int = 80,
+    seed: int = 0,
+) -> Numbers:
+    """Soundness and radius on samples of the output (sheets at their face parameters,
+    seams, skeletal edges, junctions; at most ``max_samples``), completeness from true medial
+    points, topology, ``BRepCheck`` and the free edges."""
+    t0 = time.perf_counter()
+    sb = O.SolidBoundary(solid)
+    rng = np.random.default_rng(seed)
+    num = Numbers(label, sb.diag, float(result.tol), counts=result.counts())
+    sp, sr, roles = sheet_samples(result, per_face)
+    cp, cr = curve_samples(list(result.seams) + list(result.skeletal_edges), 4)
+    jp = np.array([j.point for j in result.junctions]).reshape(-1, 3)
+    jr = np.array([j.radius for j in result.junctions])
+    pts, rad = np.vstack([sp, cp, jp]), np.concatenate([sr, cr, jr])
+    mid = np.r_[
+        np.array([r == "mid" for r in roles], dtype=bool), np.zeros(len(cp) + len(jp), bool)
+    ]
+    if len(pts) > max_samples:
+        keep = np.sort(rng.choice(len(pts), max_samples, replace=False))
+        pts, rad, mid = pts[keep], rad[keep], mid[keep]
+    snd = O.soundness(sb, pts)
+    finite = snd[np.isfinite(snd)]
+    num.samples, num.rim, num.outside = len(snd), int(np.isnan(snd).sum()), int(np.isinf(snd).sum())
+    num.soundness = float(finite.max(initial=0.0))
+    rerr = O.radius_error(sb, pts, rad)
+    num.radius = float(rerr[~mid].max(initial=0.0))
+    num.radius_mid = float(rerr[mid].max(initial=0.0))
+    _, medial, _ = O.medial_points(sb, n_complete, seed=seed)
+    num.completeness = float(CompoundDistance(result.compound).distances(medial).max(initial=0))
+    num.n_complete = len(medial)
+    num.components, num.euler = O.topology(result.compound)
+    num.solid_euler = O.solid_euler(solid)
+    num.valid = bool(BRepCheck_Analyzer(result.compound).IsValid())
+    named = [*result.seams, *result.skeletal_edges, *result.rims]
+    for e, k in edge_faces(result.compound):
+        role = next((c.role for c in named if e.IsSame(c.edge)), "unnamed")
+        if role == "seam" and k < 3 and edge_length(e) > num.tol:
+            num.thin_seams += 1
+        if k != 1 or role == "skeletal":
+            continue
+        p, _ = edge_points(e, 3)
+        off = float(sb.distances(p).max())
+        if off > num.tol:
+            num.free_off.append((off, role))
+    num.seconds["oracle"] = time.perf_counter() - t0
+    return num
+
+
+def assert_oracles(num: Numbers, seams: bool = True) -> None:
+    """Everything the oracles check, asserted. ``seams=False`` leaves out the free edges
+    named seams and the seams bounding fewer than 3 sheets (a known bug, see
+    :func:`test_fillet_centres_are_skeletal_edges`), so that random cases meeting it still
+    check everything else."""
+    d = num.diag
+    assert num.outside == 0, f"{num.label}: {num.outside} samples outside the solid"
+    assert num.soundness <= num.tol, f"{num.label}: soundness {num.soundness / d:.2e} diag"
+    assert num.radius <= num.tol, f"{num.label}: radius error {num.radius / d:.2e} diag"
+    rm = num.radius_mid
+    assert rm <= num.tol, f"{num.label}: radius error on mid sheets {rm / d:.2e} diag"
+    assert num.completeness <= num.tol, f"{num.label}: completeness {num.completeness / d:.2e}"
+    assert num.components == 1, f"{num.label}: {num.components} components"
+    assert num.euler == num.solid_euler, f"{num.label}: chi {num.euler} != {num.solid_euler}"
+    assert num.valid, f"{num.label}: compound not valid"
+    assert_free_edges(num, seams)
+
+
+def assert_free_edges(num: Numbers, seams: bool = True) -> None:
+    """Sheets are sewn: an edge bounding a single sheet is a skeletal edge or a rim on
+    the boundary, and a seam bounds at least 3 sheets."""
+    off = [(d, role) for d, role in num.free_off if seams or role != "seam"]
+    if off:
+        d, role = max(off)
+        raise AssertionError(
+            f"{num.label}: {len(off)} free edges off the boundary, up to"
+            f" {d / num.diag:.2e} diag ({role})"
+        )
+    assert not seams or num.thin_seams == 0, f"{num.label}: {num.thin_seams} seams bound < 3 sheets"
+
+
+# --------------------------------------------------------------------------- fixtures
+
+
+def _fixtures() -> list[tuple[str, str, int]]:
+    """``(name, file, solid index)`` of every fixture solid with a revolution reading."""
+    out = []
+    for folder in ("solids", "freecad"):
+        path = ROOT / folder / "manifest.json"
+        if not path.is_file():
+            continue
+        for entry in json.loads(path.read_text())["solids"]:
+            for i, s in enumerate(entry.get("solids", [entry])):
+                kinds = [s.get("kind")] + [a.get("kind") for a in s.get("also", [])]
+                if "revolution" in kinds:
+                    out.append((s["name"], f"{folder}/{entry['file']}", i))
+    return out
+
+
+FIXTURES = {name: (file, i) for name, file, i in _fixtures()}
+
+# Known failures on fixtures, as {(property, fixture): mark}. (fc_bspline_revolution's caps at
+# its B-spline curvature centre, missing and unsewn before commit ff4bb1b, now pass.)
+XFAIL: dict[tuple[str, str], Any] = {}
+
+
+def _params(prop: str) -> list[Any]:
+    return [
+        pytest.param(n, marks=[XFAIL[(prop, n)]] if (prop, n) in XFAIL else [], id=n)
+        for n in FIXTURES
+    ]
+
+
+@cache
+def fixture_case(name: str) -> tuple[Any, Any, Numbers]:
+    """``(solid, MAT through the revolution reading, oracle numbers)``, once per fixture."""
+    file, index = FIXTURES[name]
+    solid = read_step(ROOT / file)[index]
+    t0 = time.perf_counter()
+    m = revolution_mat(solid)
+    mat_s = time.perf_counter() - t0
+    num = oracle_numbers(solid, m, name)
+    num.seconds["mat"] = mat_s
+    print(num.line())
+    return solid, m, num
+
+
+def test_fixture_list_is_complete() -> None:
+    """Every revolution of both manifests is covered (8 + 2 extrusions that are also
+    revolutions in solids/, 4 in freecad/)."""
+    assert len(FIXTURES) >= 14, sorted(FIXTURES)
+
+
+@pytest.mark.parametrize("name", _params("soundness"))
+def test_fixture_soundness(name: str) -> None:
+    """Every output sample is inside the solid and within ``tol`` of the true medial point
+    on its ray (rim samples excepted)."""
+    _, _, num = fixture_case(name)
+    assert num.outside == 0, f"{name}: {num.outside} samples outside the solid"
+    assert num.soundness <= num.tol, f"{name}: soundness {num.soundness / num.diag:.2e} diag"
+
+
+@pytest.mark.parametrize("name", _params("completeness"))
+def test_fixture_completeness(name: str) -> None:
+    """True medial points of boundary samples lie within ``tol`` of the output."""
+    _, _, num = fixture_case(name)
+    assert num.completeness <= num.tol, (
+        f"{name}: completeness {num.completeness / num.diag:.2e} diag"
+    )
+
+
+@pytest.mark.parametrize("name", _params("radius"))
+def test_fixture_radius(name: str) -> None:
+    """The radius the sheets (at their face parameters), seams, skeletal edges and
+    junctions carry is the distance to the boundary, within ``tol``."""
+    _, _, num = fixture_case(name)
+    err = max(num.radius, num.radius_mid)
+    assert err <= num.tol, f"{name}: radius error {err / num.diag:.2e} diag"
+
+
+@pytest.mark.parametrize("name", _params("topology"))
+def test_fixture_topology(name: str) -> None:
+    """One connected, valid complex with the solid's Euler characteristic (homotopy)."""
+    _, _, num = fixture_case(name)
+    assert num.components == 1, f"{name}: {num.components} components"
+    assert num.euler == num.solid_euler, f"{name}: chi {num.euler} != {num.solid_euler}"
+    assert num.valid, f"{name}: BRepCheck_Analyzer says the compound is not valid"
+
+
+@pytest.mark.parametrize("name", _params("free_edges"))
+def test_fixture_free_edges(name: str) -> None:
+    """An edge bounding a single sheet is a skeletal edge or lies on the solid's boundary
+    (a rim), and a seam bounds at least 3 sheets: sheets are sewn everywhere else."""
+    assert_free_edges(fixture_case(name)[2])
+
+
+# --------------------------------------------------------------------------- small angles
+
+
+SECTOR = (200.0, 240.0, 5.0)  # x0, x1, half height: a 40 x 10 rectangle, long side radial
+SECTOR_PLACEMENT = F.random_placement(17, distance=100.0)
+# the inner branch point (x0 + half, 0) has the largest r / x = half / (x0 + half)
+SMALL = 2.0 * math.asin(SECTOR[2] / (SECTOR[0] + SECTOR[2]))  # about 2.8 degrees
+FACTORS = {"half": 0.5, "just-below": 0.9, "just-above": 1.1, "twice": 2.0}
+
+
+@cache
+def small_angle_case(factor: float) -> tuple[Any, Any, Numbers]:
+    """The rectangle ``x0..x1 x [-half, half]`` revolved by ``factor`` times the threshold."""
+    solid = revolve(F.polygon(_sector_outline()), factor * SMALL, SECTOR_PLACEMENT)
+    t0 = time.perf_counter()
+    m = revolution_mat(solid)
+    mat_s = time.perf_counter() - t0
+    num = oracle_numbers(solid, m, f"sector x{factor}", n_complete=60)
+    num.seconds["mat"] = mat_s
+    print(num.line())
+    return solid, m, num
+
+
+@pytest.mark.parametrize("factor", FACTORS.values(), ids=FACTORS.keys())
+def test_mid_sheet_exists_exactly_below_the_threshold(factor: float) -> None:
+    """``Theta < 2 asin(Rmax/x)``: the caps meet on the level curve ``d(q) = x sin(Theta/2)``
+    and a planar mid sheet in the half plane ``phi = Theta/2`` appears, where
+    ``d(q) >= x sin(Theta/2)`` (THEORY Sec. 2); above the threshold there is none. Soundness,
+    completeness and topology hold on both sides."""
+    _, m, num = small_angle_case(factor)
+    theta = factor * SMALL
+    mids = [s for s in m.sheets if s.role == "mid"]
+    if factor > 1:
+        assert not mids, f"Theta = {factor} x threshold: {len(mids)} mid sheets"
+    else:
+        assert mids, f"Theta = {factor} x threshold: no mid sheet"
+        prof = PolygonRevolution(_sector_outline(), theta)
+        for s in mids:
+            p, _ = face_samples(s.face, 25)
+            rho, y, phi = cylindrical(p, SECTOR_PLACEMENT, theta)
+            assert np.abs(rho * (phi - theta / 2)).max() <= m.tol, "mid sheet off phi = Theta/2"
+            d = prof.profile_distance(np.c_[rho, y])[0].min(axis=1)
+            assert np.all(d >= rho * math.sin(theta / 2) - m.tol), "mid sheet past its level curve"
+    d = num.diag
+    assert num.outside == 0, f"{num.outside} samples outside the solid"
+    assert num.soundness <= num.tol, f"soundness {num.soundness / d:.2e} diag"
+    assert num.completeness <= num.tol, f"completeness {num.completeness / d:.2e} diag"
+    assert (num.components, num.euler, num.valid) == (1, num.solid_euler, True)
+
+
+@pytest.mark.parametrize("factor", FACTORS.values(), ids=FACTORS.keys())
+def test_small_angle_radius(factor: float) -> None:
+    """The radius every sheet carries is the distance to the boundary; on the mid sheet
+    that is the distance ``x sin(Theta/2)`` to either cap."""
+    _, m, num = small_angle_case(factor)
+    theta = factor * SMALL
+    for s in m.sheets:
+        if s.role != "mid":
+            continue
+        p, uv = face_samples(s.face, 25)
+        rho, _, _ = cylindrical(p, SECTOR_PLACEMENT, theta)
+        err = np.abs(s.radius(uv[:, 0], uv[:, 1]) - rho * math.sin(theta / 2)).max()
+        assert err <= m.tol, f"{s.name}: radius off x sin(Theta/2) by {err / num.diag:.2e} diag"
+    assert max(num.radius, num.radius_mid) <= num.tol, (
+        f"radius error {max(num.radius, num.radius_mid) / num.diag:.2e} diag"
+    )
+
+
+def _sector_outline() -> FloatArray:
+    x0, x1, half = SECTOR
+    return np.array([(x0, -half), (x1, -half), (x1, half), (x0, half)])
+
+
+# --------------------------------------------------------------------------- refusals
+
+
+def test_pie_slice_is_refused() -> None:
+    """A partial revolution of a profile touching its axis (a slice of a cone, which is not
+    an extrusion) is refused with a message that names the problem."""
+    solid = revolve(F.polygon([(0, 0), (10, 0), (0, 25)]), 0.5 * math.pi)
+    with pytest.raises(UnsupportedSolidError, match=r"pie slice|touches its axis"):
+        api.medial_axis(solid)
+
+
+def test_quarter_cylinder_read_as_a_revolution_is_refused() -> None:
+    """A quarter cylinder is computed as an extrusion; its revolution reading (a pie slice)
+    is refused."""
+    solid = revolve(F.polygon([(0, 0), (10, 0), (10, 30), (0, 30)]), 0.5 * math.pi)
+    assert api.medial_axis(solid).kind == "extrusion"
+    with pytest.raises(UnsupportedSolidError, match=r"pie slice|touches its axis"):
+        revolution_mat(solid)
+
+
+# --------------------------------------------------------------------------- random profiles
+
+# Conventions of tests/test_mat2d_oracle.py: no shrinking unless MEDIALCAD_HYPOTHESIS_SHRINK,
+# derandomized unless MEDIALCAD_HYPOTHESIS_RANDOM; a quarter of MEDIALCAD_HYPOTHESIS_EXAMPLES
+# (at least 2) examples: a 3D case costs about four 2D ones.
+_PHASES = [Phase.explicit, Phase.reuse, Phase.generate] + (
+    [Phase.shrink] if os.environ.get("MEDIALCAD_HYPOTHESIS_SHRINK") else []
+)
+HYPO = settings(
+    max_examples=max(2, int(os.environ.get("MEDIALCAD_HYPOTHESIS_EXAMPLES", "6")) // 4),
+    phases=_PHASES,
+    derandomize=not os.environ.get("MEDIALCAD_HYPOTHESIS_RANDOM"),
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
+)
+
+ANGLES = st.one_of(st.floats(math.radians(5), math.radians(355)), st.just(TWO_PI))
+
+
+def _revolved(face: Any, margin: float, angle: float, seed: int) -> Any:
+    """``face`` (inside the unit disk) moved to ``x >= margin`` and revolved by ``angle``
+    about a random axis."""
+    shift = F.Placement(np.eye(3), np.array([1.0 + margin, 0.0, 0.0]))
+    return revolve(F.place(face, shift), angle, F.random_placement(seed))
+
+
+def _check_random(face: Any, margin: float, angle: float, seed: int, label: str) -> None:
+    solid = _revolved(face, margin, angle, seed)
+    t0 = time.perf_counter()
+    m = revolution_mat(solid)
+    mat_s = time.perf_counter() - t0
+    num = oracle_numbers(solid, m, f"{label} {math.degrees(angle):.0f}deg", n_complete=60)
+    num.seconds["mat"] = mat_s
+    print(num.line())
+    # a known bug met by random fillets in full revolutions (seams bounding one sheet) has
+    # its own xfail test; everything else is asserted
+    assert_oracles(num, seams=False)
+
+
+@HYPO
+@given(
+    face=st.one_of(F.star_polygon_strategy(), F.polygon_with_holes_strategy()),
+    margin=st.floats(0.05, 3.0),
+    angle=ANGLES,
+    seed=st.integers(0, 2**16),
+)
+def test_random_polygonal_revolution(face: Any, margin: float, angle: float, seed: int) -> None:
+    _check_random(face, margin, angle, seed, "polygon")
+
+
+@HYPO
+@given(
+    face=F.line_arc_fillet_mix(),
+    margin=st.floats(0.05, 3.0),
+    angle=ANGLES,
+    seed=st.integers(0, 2**16),
+)
+def test_random_curved_revolution(face: Any, margin: float, angle: float, seed: int) -> None:
+    _check_random(face, margin, angle, seed, "curved")
+
+
+# --------------------------------------------------------------------------- B-spline profiles
+
+BLOB = (1.0, 0.7, 0.9, 0.6, 0.8)  # radii of a periodic B-spline profile (tests.faces)
+SECTION_KINK = (
+    "full revolution of a smooth B-spline profile: the recognised meridian section "
+    "(occ/recognize.py:_section) is one 128-pole B-spline closing with a 2.3e-6 rad tangent "
+    "kink (> ANGLE_TOL 1e-6) at x 2.5; the 2D MAT takes it for a convex corner and grows "
+    "branches to it (2D soundness 1692 and 231 tol): 104 of 256 sheet samples unsound "
+    "(6.5e-2 diag), radius error 2.6e-3 diag, chi 4 != 0"
+)
+NEAR_CIRCLE = (
+    "near-circular B-spline profile revolved by 5 degrees (mid sheet): the planar mid sheet "
+    "fails BRepCheck (UnorientableShape), and the start and end caps of one segment are 3.3 "
+    "tol unsound near the profile's outermost point (x 1.53, phi < 2.5 deg): they carry "
+    "r = x sin(phi) but the true d(q) there differs by up to 2.9 tol (the cap rulings' feet)"
+)
+
+
+@pytest.mark.parametrize(
+    "angle",
+    [
+        pytest.param(
+            TWO_PI, id="full", marks=[pytest.mark.xfail(strict=False, reason=SECTION_KINK)]
+        ),
+        pytest.param(TWO_PI / 3, id="120deg"),
+    ],
+)
+def test_bspline_blob_profile(angle: float) -> None:
+    """A periodic B-spline profile (the 2D suite's blob) revolved about an axis 0.5 away:
+    the oracles pass and the sheets are sewn."""
+    solid = _revolved(F.bspline_blob(BLOB), 0.5, angle, 3)
+    t0 = time.perf_counter()
+    m = revolution_mat(solid)
+    mat_s = time.perf_counter() - t0
+    num = oracle_numbers(
+        solid, m, f"blob {math.degrees(angle):.0f}deg", max_samples=400, n_complete=60
+    )
+    num.seconds["mat"] = mat_s
+    print(num.line())
+    assert_oracles(num)
+
+
+@pytest.mark.xfail(strict=False, reason=NEAR_CIRCLE)
+def test_near_circular_bspline_profile_small_angle() -> None:
+    """The simplest blob (5 equal radii: nearly a circle, 4 curvature centres and 2 branch
+    points close together) 1.05 from the axis, revolved by 5 degrees (far below the
+    mid-sheet threshold, about 55 degrees): the oracles pass."""
+    solid = _revolved(F.bspline_blob([0.5] * 5), 0.05, math.radians(5.0), 0)
+    t0 = time.perf_counter()
+    m = revolution_mat(solid)
+    mat_s = time.perf_counter() - t0
+    assert any(s.role == "mid" for s in m.sheets)
+    num = oracle_numbers(solid, m, "near circle 5deg", max_samples=400, n_complete=60)
+    num.seconds["mat"] = mat_s
+    print(num.line())
+    assert_oracles(num)
+
+
+@pytest.mark.xfail(strict=False, reason=f"{SECTION_KINK}; {NEAR_CIRCLE}")
+@HYPO
+@given(
+    face=F.random_bspline_blob(),
+    margin=st.floats(0.05, 3.0),
+    angle=ANGLES,
+    seed=st.integers(0, 2**16),
+)
+def test_random_bspline_revolution(face: Any, margin: float, angle: float, seed: int) -> None:
+    _check_random(face, margin, angle, seed, "blob")
+
+
+# --------------------------------------------------------------------------- the test helper
+
+
+def test_compound_distance_is_brepextrema_distance() -> None:
+    """:class:`CompoundDistance` (used for completeness) agrees with
+    ``BRepExtrema_DistShapeShape`` on points near and far from a complex of revolved and
+    cap sheets."""
+    solid = revolve(F.polygon([(20, 0), (30, 0), (30, 50), (20, 50)]), 2.0)
+    m = revolution_mat(solid)
+    _, medial, _ = O.medial_points(O.SolidBoundary(solid), 12, seed=5)
+    rng = np.random.default_rng(0)
+    pts = np.vstack([medial, medial + rng.normal(scale=3.0, size=medial.shape)])
+    fast = CompoundDistance(m.compound).distances(pts)
+    exact = O.ShapeDistance(m.compound).distances(pts)
+    assert np.abs(fast - exact).max() <= 1e-9 * O.bbox_diagonal(solid)
