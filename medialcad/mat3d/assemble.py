@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -77,16 +78,8 @@ def build_complex(
                     np.array([mid_radius] * 2),
                 )
             )
-    seams: list[Seam] = []
+    seams, rims = _row_curves(cb, row_radius, seam_roles)
     skeletal: list[Seam] = []
-    rims: list[Seam] = []
-    for key, e in cb.curve_edges.items():
-        role = seam_roles(key)
-        if role is None:
-            continue
-        knots, degree, rad = row_radius[key]
-        target = seams if role == "seam" else rims
-        target.append(Seam("", e.edge, role, knots, degree, rad))
     for ln in lines:
         v0, v1 = cb.vertex(ln.p0), cb.vertex(ln.p1)
         if v0 == v1:
@@ -97,31 +90,52 @@ def build_complex(
             continue
         target = {"seam": seams, "skeletal": skeletal, "rim": rims}[ln.role]
         target.append(Seam("", e.edge, ln.role, _LINEAR, 1, np.array([ln.radius, ln.radius])))
-    seams = [
-        Seam(f"seam-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
-        for i, s in enumerate(seams)
-    ]
-    skeletal = [
-        Seam(f"skeletal-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
-        for i, s in enumerate(skeletal)
-    ]
-    rims = [
-        Seam(f"rim-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
-        for i, s in enumerate(rims)
-    ]
-    juncs: list[Junction] = []
-    seen: set[int] = set()
-    for jp, jr in junctions:
-        vi = cb.vertex(jp)
-        if vi in seen:
-            continue
-        seen.add(vi)
-        juncs.append(
-            Junction(f"junction-{len(juncs) + 1}", cb.vertices[vi], cb.points[vi], float(jr))
-        )
+    seams, skeletal, rims = (
+        _numbered(seams, "seam"),
+        _numbered(skeletal, "skeletal"),
+        _numbered(rims, "rim"),
+    )
+    juncs = _junctions(cb, junctions)
     extra = [s.edge for s in skeletal if not _in_faces(cb, s.edge)]
     comp = cb.compound(extra)
     return tuple(sheets), tuple(seams), tuple(skeletal), tuple(rims), tuple(juncs), comp
+
+
+def _row_curves(
+    cb: Any,
+    row_radius: dict[Any, tuple[FloatArray, int, FloatArray]],
+    roles: Callable[[Any], str | None],
+) -> tuple[list[Seam], list[Seam]]:
+    """Seams and rims among the row curve edges (``roles`` names them; ``u = const``
+    sides are named by the patches that own them)."""
+    seams: list[Seam] = []
+    rims: list[Seam] = []
+    for key, e in cb.curve_edges.items():
+        role = None if key[0] == "side" else roles(key)
+        if role is None:
+            continue
+        knots, degree, rad = row_radius[key]
+        (seams if role == "seam" else rims).append(Seam("", e.edge, role, knots, degree, rad))
+    return seams, rims
+
+
+def _numbered(items: list[Seam], prefix: str) -> list[Seam]:
+    """The curves named ``prefix-1``, ``prefix-2``, ... in order."""
+    return [replace(c, name=f"{prefix}-{i + 1}") for i, c in enumerate(items)]
+
+
+def _junctions(cb: Any, junctions: list[tuple[FloatArray, float]]) -> list[Junction]:
+    """One named junction per distinct vertex of the complex, in order."""
+    out: list[Junction] = []
+    seen: set[int] = set()
+    for p, r in junctions:
+        vi = cb.vertex(p)
+        if vi not in seen:
+            seen.add(vi)
+            out.append(
+                Junction(f"junction-{len(out) + 1}", cb.vertices[vi], cb.points[vi], float(r))
+            )
+    return out
 
 
 def _in_faces(cb: Any, edge: Any) -> bool:
@@ -155,7 +169,7 @@ def build_grid_complex(
 ) -> tuple:
     """Like :func:`build_complex` for tensor patches (revolutions)."""
     from medialcad.mat3d.revolution import interp_grid
-    from medialcad.occ.complex import ComplexBuilder, Row, bspline
+    from medialcad.occ.complex import ComplexBuilder, Row
 
     cb = ComplexBuilder(merge=1e-8 * diag, tol=max(1e-7 * diag, 1e-9))
     sheets: list[Sheet] = []
@@ -184,15 +198,7 @@ def build_grid_complex(
         for (role, rad), col in ((g.left, poles[0]), (g.right, poles[-1])):
             if role is None:
                 continue
-            v0, v1 = cb.vertex(col[0]), cb.vertex(col[-1])
-            mid = col[len(col) // 2]
-            key = (
-                "side",
-                min(v0, v1),
-                max(v0, v1),
-                tuple(np.round(mid / (100 * cb.merge)).astype(int)),
-            )
-            e = cb.curve_edges.get(key)
+            e = cb.curve_edges.get(cb.side_key(col))
             if e is not None:
                 named_sides.append((e.edge, role, rad))
     if mid_plane is not None and offsets:
@@ -211,15 +217,8 @@ def build_grid_complex(
                     slope=mid_slope,
                 )
             )
-    seams: list[Seam] = []
+    seams, rims = _row_curves(cb, row_radius, seam_roles)
     skeletal: list[Seam] = []
-    rims: list[Seam] = []
-    for ckey, e in cb.curve_edges.items():
-        role = seam_roles(ckey) if ckey[0] != "side" else None  # type: ignore[index]
-        if role is None:
-            continue
-        knots, degree, rad = row_radius[ckey]
-        (seams if role == "seam" else rims).append(Seam("", e.edge, role, knots, degree, rad))
     seen: list[Any] = []
     for edge, role, rad in named_sides:
         if any(edge.IsSame(x) for x in seen):
@@ -238,29 +237,12 @@ def build_grid_complex(
         e = cb.curve_edge(row)
         extra.append(e.edge)
         skeletal.append(Seam("", e.edge, "skeletal", np.asarray(sr.t), k, np.asarray(sr.c)))
-    del bspline
-    seams = [
-        Seam(f"seam-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
-        for i, s in enumerate(seams)
-    ]
-    skeletal = [
-        Seam(f"skeletal-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
-        for i, s in enumerate(skeletal)
-    ]
-    rims = [
-        Seam(f"rim-{i + 1}", s.edge, s.role, s.knots, s.degree, s.radius_poles)
-        for i, s in enumerate(rims)
-    ]
-    juncs: list[Junction] = []
-    seen_v: set[int] = set()
-    for p, r in junctions:
-        vi = cb.vertex(p)
-        if vi in seen_v:
-            continue
-        seen_v.add(vi)
-        juncs.append(
-            Junction(f"junction-{len(juncs) + 1}", cb.vertices[vi], cb.points[vi], float(r))
-        )
+    seams, skeletal, rims = (
+        _numbered(seams, "seam"),
+        _numbered(skeletal, "skeletal"),
+        _numbered(rims, "rim"),
+    )
+    juncs = _junctions(cb, junctions)
     loose = [e for e in extra if not _used(cb, e)]
     if not cb.faces and not loose:
         loose = [j.vertex for j in juncs]

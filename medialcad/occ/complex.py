@@ -224,22 +224,22 @@ class ComplexBuilder:
         self.faces.append(face)
         return face
 
+    def side_key(self, poles: FloatArray) -> tuple[Any, ...]:
+        """The key a ``u = const`` side is shared by: its end vertices and middle pole."""
+        v0, v1 = self.vertex(poles[0]), self.vertex(poles[-1])
+        mid = np.round(poles[len(poles) // 2] / (100 * self.merge)).astype(int)
+        return ("side", min(v0, v1), max(v0, v1), tuple(mid))
+
     def _col_side(
         self, wire: TopoDS_Wire, face: TopoDS_Face, u: float, col: Row, *, up: bool
     ) -> None:
         """The side ``u = const`` (poles from ``v = 0`` to ``v = 1``), traversed up or down."""
-        v0, v1 = self.vertex(col.poles[0]), self.vertex(col.poles[-1])
+        v0 = self.vertex(col.poles[0])
         if self.is_degenerate(col):
             pc = Geom2d_Line(gp_Pnt2d(u, 0.0 if up else 1.0), gp_Dir2d(0.0, 1.0 if up else -1.0))
             self._degenerate(wire, face, pc, v0)
             return
-        mid = col.poles[len(col.poles) // 2]
-        key = (
-            "side",
-            min(v0, v1),
-            max(v0, v1),
-            tuple(np.round(mid / (100 * self.merge)).astype(int)),
-        )
+        key = self.side_key(col.poles)
         e = self.curve_edges.get(key)
         if e is None:
             e = self.curve_edge(Row(key, col.knots, col.poles, col.degree))
