@@ -40,7 +40,7 @@ from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
 from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy, BRepBuilderAPI_MakeVertex
+from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
 from OCP.BRepClass import BRepClass_FaceClassifier
 from OCP.BRepClass3d import BRepClass3d_SolidClassifier
 from OCP.BRepExtrema import (
@@ -54,7 +54,7 @@ from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
 from OCP.Extrema import Extrema_ExtAlgo, Extrema_ExtFlag
 from OCP.GCPnts import GCPnts_AbscissaPoint
-from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec
+from OCP.gp import gp_Pnt2d
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
 from OCP.TopAbs import (
     TopAbs_EDGE,
@@ -71,6 +71,8 @@ from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape, TopoDS_Solid
 from OCP.TopTools import TopTools_IndexedDataMapOfShapeListOfShape, TopTools_IndexedMapOfShape
 from scipy.spatial import cKDTree
+
+from tests.oracles import _pnt, _vertex, _xyz, as_occ, bbox_diagonal
 
 __all__ = [
     "ShapeDistance",
@@ -94,38 +96,6 @@ _IN_FACE = BRepExtrema_SupportType.BRepExtrema_IsInFace
 
 
 # --------------------------------------------------------------------------- helpers
-
-
-def as_occ(shape: Any) -> TopoDS_Shape:
-    """The ``TopoDS_Shape`` behind a raw OCP shape, a cadquery/build123d shape or Workplane."""
-    if isinstance(shape, TopoDS_Shape):
-        return shape
-    if hasattr(shape, "val") and callable(shape.val):  # cadquery Workplane
-        shape = shape.val()
-    wrapped = getattr(shape, "wrapped", None)
-    if isinstance(wrapped, TopoDS_Shape):
-        return wrapped
-    raise TypeError(f"not a shape: {type(shape).__name__}")
-
-
-def bbox_diagonal(shape: Any) -> float:
-    """Diagonal of the (optimal, geometry-only) bounding box of ``shape``."""
-    box = Bnd_Box()
-    BRepBndLib.AddOptimal_s(as_occ(shape), box, False, False)
-    xmin, ymin, zmin, xmax, ymax, zmax = box.Get()
-    return float(math.dist((xmin, ymin, zmin), (xmax, ymax, zmax)))
-
-
-def _pnt(p: FloatArray) -> gp_Pnt:
-    return gp_Pnt(float(p[0]), float(p[1]), float(p[2]))
-
-
-def _xyz(p: gp_Pnt | gp_Vec) -> FloatArray:
-    return np.array([p.X(), p.Y(), p.Z()])
-
-
-def _vertex(p: FloatArray) -> TopoDS_Shape:
-    return BRepBuilderAPI_MakeVertex(_pnt(p)).Vertex()
 
 
 def _indexed(shape: TopoDS_Shape, kind: Any) -> TopTools_IndexedMapOfShape:
