@@ -104,6 +104,17 @@ def _parser() -> argparse.ArgumentParser:
         default=None,
         help="picture: the first solid and its 3D medial axis coloured by radius beside its profile's 2D axis (or the 2D axis of the first face)",
     )
+    p.add_argument(
+        "--html",
+        metavar="VIEWER.html",
+        default=None,
+        help="self-contained interactive 3D viewer of the first solid and its medial axis (solids only)",
+    )
+    p.add_argument(
+        "--no-thickness",
+        action="store_true",
+        help="skip the minimum/maximum wall thickness (about doubles the time otherwise spent on a solid)",
+    )
     p.add_argument("--debug", action="store_true", help="show tracebacks")
     return p
 
@@ -206,6 +217,8 @@ def convert(
     report_path: str | os.PathLike[str] | None = None,
     radius_path: str | os.PathLike[str] | None = None,
     png: str | os.PathLike[str] | None = None,
+    html: str | os.PathLike[str] | None = None,
+    thickness: bool = True,
     debug: bool = False,
 ) -> Conversion:
     """Compute the medial axis of every solid (or, without solids, every planar face) of
@@ -218,7 +231,11 @@ def convert(
         fmt: ``"step"`` or ``"brep"``; default by the suffix of ``output``.
         report_path: JSON report; written even when a solid is refused.
         radius_path: radius sidecar (solids only); ``None``: none.
-        png: picture of the 2D medial axis (first face / first solid's profile).
+        png: picture: the first solid with its 3D medial axis and its profile's 2D axis
+            (or the 2D axis of the first face).
+        html: interactive viewer of the first solid and its medial axis (solids only).
+        thickness: add the minimum and maximum wall thickness of every solid, with their
+            locations, to the report and the summary lines.
         debug: print the traceback of every failing solid to stderr.
 
     Returns:
@@ -235,10 +252,11 @@ def convert(
 
     _check_tol(tol)
     src, out = Path(input), Path(output)
-    targets = [out] + [Path(p) for p in (report_path, radius_path, png) if p is not None]
+    extra = (report_path, radius_path, png, html)
+    targets = [out] + [Path(p) for p in extra if p is not None]
     resolved = [t.resolve() for t in targets]
     if len(set(resolved)) != len(resolved):
-        raise InputError("the output, report, radius and picture files must all differ")
+        raise InputError("the output, report, radius, picture and viewer files must all differ")
     if src.resolve() in resolved:
         raise InputError(f"{src}: refusing to overwrite the input file")
     if fmt is None:
@@ -253,10 +271,23 @@ def convert(
         all_solids.extend(found)
         loose += not found
     if not all_solids:
+        if html is not None:
+            raise InputError(
+                f"{src} holds faces and no solid: --html shows solids (use --png for faces)"
+            )
         return _convert_faces(src, out, shapes, tol, fmt, report_path, png)
     if loose:
         log.warning("%s: %d root shape(s) without a solid are ignored", src, loose)
-    return _convert_solids(src, out, all_solids, tol, fmt, report_path, radius_path, png, debug)
+    pictures = _Pictures(png, html)
+    return _convert_solids(
+        src, out, all_solids, tol, fmt, report_path, radius_path, pictures, thickness, debug
+    )
+
+
+@dataclass(frozen=True)
+class _Pictures:
+    png: str | os.PathLike[str] | None = None
+    html: str | os.PathLike[str] | None = None
 
 
 # --------------------------------------------------------------------------- solids
@@ -278,8 +309,26 @@ def _floats(v: Any) -> list[float]:
     return [float(x) + 0.0 for x in v]  # + 0.0: no -0.0
 
 
+def _thickness_fields(mat: Any) -> dict[str, Any]:
+    from medialcad.thickness import wall_thickness
+
+    t = wall_thickness(mat)
+
+    def num(x: float) -> float | None:
+        return float(x) if math.isfinite(x) else None
+
+    return {
+        "min": num(t.min),
+        "max": num(t.max),
+        "min_location": _floats(t.min_location) if math.isfinite(t.min) else None,
+        "max_location": _floats(t.max_location),
+        "min_entity": t.min_entity,
+        "max_entity": t.max_entity,
+    }
+
+
 def _solve_solid(
-    index: int, count: int, solid: Any, tol: float | None, debug: bool
+    index: int, count: int, solid: Any, tol: float | None, thickness: bool, debug: bool
 ) -> tuple[dict[str, Any], Any]:
     """The report entry of one solid and its medial axis (``None`` if it failed)."""
     from medialcad.api import medial_axis
@@ -316,6 +365,17 @@ def _solve_solid(
         "seconds": round(seconds, 4),
         "product": solid_product_name(index),
     }
+    if thickness:
+        t1 = time.perf_counter()
+        try:
+            entry["thickness"] = _thickness_fields(mat)
+            entry["timings"]["thickness"] = round(time.perf_counter() - t1, 4)
+        except Exception as err:  # noqa: BLE001 -- the medial axis stands without it
+            if debug:
+                traceback.print_exception(err, file=sys.stderr)
+            log.warning("solid %d of %d: no wall thickness: %s", index, count, err)
+            entry["thickness"] = {"error": _one_line(err)}
+        entry["seconds"] = round(time.perf_counter() - t0, 4)
     return entry, mat
 
 
@@ -331,9 +391,15 @@ def _solid_line(entry: dict[str, Any], count: int) -> str:
         what = f"extrusion along ({d}), length {entry['length']:.6g}"
     else:
         what = f"revolution through {math.degrees(entry['angle']):.6g} deg"
+    wall = ""
+    if "thickness" in entry and "error" not in entry["thickness"]:
+        t = entry["thickness"]
+        low = "n/a" if t["min"] is None else f"{t['min']:.6g}"
+        wall = f", wall {low}..{t['max']:.6g}"
     return (
         f"{head}: {what}: {c['sheets']} sheets, {c['seams']} seams, {c['junctions']} junctions, "
-        f"{c['skeletal_edges']} skeletal edges, rmax {entry['rmax']:.6g}, {entry['seconds']:.3f} s"
+        f"{c['skeletal_edges']} skeletal edges, rmax {entry['rmax']:.6g}{wall}, "
+        f"{entry['seconds']:.3f} s"
     )
 
 
@@ -345,7 +411,8 @@ def _convert_solids(
     fmt: str,
     report_path: str | os.PathLike[str] | None,
     radius_path: str | os.PathLike[str] | None,
-    png: str | os.PathLike[str] | None,
+    pictures: _Pictures,
+    thickness: bool,
     debug: bool,
 ) -> Conversion:
     from medialcad.occ.io import write_brep, write_step, write_step_named
@@ -355,7 +422,7 @@ def _convert_solids(
     entries: list[dict[str, Any]] = []
     mats: list[Any] = []
     for i, solid in enumerate(all_solids, start=1):
-        entry, mat = _solve_solid(i, n, solid, tol, debug)
+        entry, mat = _solve_solid(i, n, solid, tol, thickness, debug)
         entries.append(entry)
         mats.append(mat)
     report: dict[str, Any] = {
@@ -406,10 +473,15 @@ def _convert_solids(
                     ],
                 }
             _write_json(staging.path(Path(radius_path)), data, indent=1)
-        if png is not None:
-            from medialcad.plot3d import render_png
+        if pictures.png is not None or pictures.html is not None:
+            from medialcad.plot3d import render_png, tessellate
+            from medialcad.viewer import HTML_MAX_TRIANGLES, write_html
 
-            render_png(mats[0], staging.path(Path(png)))
+            if pictures.png is not None:
+                render_png(mats[0], staging.path(Path(pictures.png)))
+            if pictures.html is not None:
+                scene = tessellate(mats[0], max_triangles=HTML_MAX_TRIANGLES)
+                write_html(mats[0], staging.path(Path(pictures.html)), scene=scene)
         if report_path is not None:
             _write_json(staging.path(Path(report_path)), report)
         written = staging.commit()
@@ -508,6 +580,8 @@ def _run(args: argparse.Namespace) -> int:
         report_path=args.report,
         radius_path=radius,
         png=args.png,
+        html=args.html,
+        thickness=not args.no_thickness,
         debug=args.debug,
     )
     for line in result.lines:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -182,58 +183,115 @@ def _solid_mesh(solid: Any, deflection: float, angle: float) -> Mesh:
 def _refine(
     pts: FloatArray, uv: FloatArray, tris: IntArray, max_len: float, cap: int
 ) -> tuple[FloatArray, FloatArray, IntArray]:
-    """Split triangles longer than ``max_len`` in four (midpoints), while at most ``cap``
-    triangles result: long slivers would show a radius gradient as a few flat patches.
-
-    Midpoints of chords lie on the neighbours' chords, so the split opens no crack."""
-    while len(tris):
+    """Bisect the longest edge of triangles longer than ``max_len`` (longest first) while
+    at most ``cap`` triangles result: a sliver across a radius gradient would otherwise
+    show as one flat patch. New vertices get the mean of the ends' ``pts`` and ``uv``
+    (the caller moves them onto the surface)."""
+    while len(tris) < cap:
         e = pts[tris[:, [1, 2, 0]]] - pts[tris]
-        longest = np.sqrt((e**2).sum(axis=2)).max(axis=1)
+        lens = np.sqrt((e**2).sum(axis=2))
+        longest = lens.max(axis=1)
         split = np.flatnonzero(longest > max_len)
-        if len(split) == 0 or len(tris) + 3 * len(split) > cap:
+        if len(split) == 0:
             break
-        t = tris[split]
-        n0 = len(pts)
-        k = len(split)
-        mids = [(t[:, 0], t[:, 1]), (t[:, 1], t[:, 2]), (t[:, 2], t[:, 0])]
-        pts = np.vstack([pts] + [0.5 * (pts[a] + pts[b]) for a, b in mids])
-        uv = np.vstack([uv] + [0.5 * (uv[a] + uv[b]) for a, b in mids])
-        m01, m12, m20 = (n0 + i * k + np.arange(k) for i in range(3))
+        split = split[np.argsort(-longest[split], kind="stable")][: cap - len(tris)]
+        # rotate each split triangle so that its longest edge is (0, 1)
+        k = lens[split].argmax(axis=1)
+        rows = np.arange(3)[None, :] + k[:, None]
+        t = np.take_along_axis(tris[split], rows % 3, axis=1)
+        mid = len(pts) + np.arange(len(split))
+        pts = np.vstack([pts, 0.5 * (pts[t[:, 0]] + pts[t[:, 1]])])
+        uv = np.vstack([uv, 0.5 * (uv[t[:, 0]] + uv[t[:, 1]])])
         new = np.concatenate(
-            [
-                np.stack([t[:, 0], m01, m20], axis=1),
-                np.stack([m01, t[:, 1], m12], axis=1),
-                np.stack([m20, m12, t[:, 2]], axis=1),
-                np.stack([m01, m12, m20], axis=1),
-            ]
+            [np.stack([t[:, 0], mid, t[:, 2]], axis=1), np.stack([mid, t[:, 1], t[:, 2]], axis=1)]
         )
         tris = np.vstack([np.delete(tris, split, axis=0), new])
     return pts, uv, tris
 
 
-def _sheet_mesh(
-    result: MedialAxis3D, deflection: float, angle: float, max_len: float, cap: int
-) -> Mesh:
+@dataclass(frozen=True)
+class _RawSheets:
+    """Meshed sheets before refinement: ``uvf`` holds ``(u, v, face index)`` per vertex."""
+
+    sheets: tuple[Any, ...]
+    faces: tuple[Any, ...]
+    points: FloatArray
+    uvf: FloatArray
+    triangles: IntArray
+
+
+def _raw_sheets(result: MedialAxis3D, deflection: float, angle: float) -> _RawSheets:
     from medialcad.occ.shapes import compound
 
     copier = _meshed_copy(compound([s.face for s in result.sheets]), deflection, angle)
-    parts = []
+    kept: list[Any] = []
+    kept_faces: list[Any] = []
+    pts: list[FloatArray] = []
+    uvf: list[FloatArray] = []
+    tris: list[IntArray] = []
+    n = 0
     for sheet in result.sheets:
         face = _copied_face(copier, sheet.face)
         got = None if face is None else _face_mesh(face)
         if got is None:
             continue
         p, uv, t = got
-        if uv is None:  # no parameters: radius of the nearest mesh vertex is unknown
-            r = np.full(len(p), np.nan)
-            tr = np.full(len(t), np.nan)
-        else:
-            p, uv, t = _refine(p, uv, t, max_len, max(cap, len(t)))
-            r = np.asarray(sheet.radius(uv[:, 0], uv[:, 1]), dtype=float)
-            c = uv[t].mean(axis=1)
-            tr = np.asarray(sheet.radius(c[:, 0], c[:, 1]), dtype=float)
-        parts.append((sheet.name, p, t, r, tr))
-    return _assemble(parts)
+        if uv is None:  # no parameters: no radius
+            uv = np.full((len(p), 2), np.nan)
+        uvf.append(np.column_stack([uv, np.full(len(p), float(len(kept)))]))
+        kept.append(sheet)
+        kept_faces.append(face)
+        pts.append(p)
+        tris.append(t + n)
+        n += len(p)
+    if not kept:
+        return _RawSheets((), (), np.zeros((0, 3)), np.zeros((0, 3)), np.zeros((0, 3), np.int64))
+    return _RawSheets(
+        tuple(kept), tuple(kept_faces), np.vstack(pts), np.vstack(uvf), np.vstack(tris)
+    )
+
+
+def _finish_sheets(raw: _RawSheets, max_len: float, cap: int) -> Mesh:
+    """Refine (up to ``cap`` triangles in all), group by sheet, evaluate the radius."""
+    if not raw.sheets:
+        return Mesh.empty()
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+
+    pts, uvf, tris = _refine(raw.points, raw.uvf, raw.triangles, max_len, cap)
+    fid = uvf[:, 2].round().astype(np.int64)
+    # new vertices: on the surface at their (u, v), which need not be the chord's midpoint
+    new = np.arange(len(raw.points), len(pts))
+    new = new[np.isfinite(uvf[new, 0])]
+    surfaces: dict[int, Any] = {}
+    for i in new:
+        k = int(fid[i])
+        if k not in surfaces:
+            surfaces[k] = BRepAdaptor_Surface(raw.faces[k])
+        pts[i] = _xyz(surfaces[k].Value(float(uvf[i, 0]), float(uvf[i, 1])))
+    order = np.argsort(fid, kind="stable")
+    inv = np.empty_like(order)
+    inv[order] = np.arange(len(order))
+    pts, uvf, fid, tris = pts[order], uvf[order], fid[order], inv[tris]
+    tfid = fid[tris[:, 0]]
+    torder = np.argsort(tfid, kind="stable")
+    tris, tfid = tris[torder], tfid[torder]
+    nf = len(raw.sheets)
+    starts = np.concatenate([[0], np.cumsum(np.bincount(fid, minlength=nf))])
+    tstarts = np.concatenate([[0], np.cumsum(np.bincount(tfid, minlength=nf))])
+    centroid = uvf[tris].mean(axis=1)
+    radius = np.full(len(pts), np.nan)
+    tri_radius = np.full(len(tris), np.nan)
+    for k, sheet in enumerate(raw.sheets):
+        a, b = starts[k], starts[k + 1]
+        ta, tb = tstarts[k], tstarts[k + 1]
+        if b == a or np.isnan(uvf[a, 0]):
+            continue
+        uv = np.vstack([uvf[a:b, :2], centroid[ta:tb, :2]])
+        r = np.asarray(sheet.radius(uv[:, 0], uv[:, 1]), dtype=float)
+        radius[a:b], tri_radius[ta:tb] = r[: b - a], r[b - a :]
+    return Mesh(
+        pts, tris, tuple(sh.name for sh in raw.sheets), starts.astype(np.int64), radius, tri_radius
+    )
 
 
 def _edge_polyline(edge: Any, angle: float, deflection: float) -> tuple[FloatArray, FloatArray]:
@@ -320,20 +378,20 @@ def tessellate(result: MedialAxis3D, *, solid: Any = None, max_triangles: int = 
 
     shape = as_topods(solid) if solid is not None else getattr(result.recognition, "solid", None)
     diag = _bbox_diag(shape) if shape is not None else _bbox_diag(result.compound)
-    deflection, angle, max_len = 1e-2 * diag, 0.3, diag / 40.0
-    # refinement of long sheet triangles gets at most a third of the budget
-    cap = max(max_triangles // (3 * max(len(result.sheets), 1)), 8)
+    deflection, angle = 1e-2 * diag, 0.3
     decimated = False
     for attempt in range(3):
         solid_mesh = Mesh.empty() if shape is None else _solid_mesh(shape, deflection, angle)
-        sheets = _sheet_mesh(result, deflection, angle, max_len, cap)
-        total = len(solid_mesh.triangles) + len(sheets.triangles)
+        raw = _raw_sheets(result, deflection, angle)
+        total = len(solid_mesh.triangles) + len(raw.triangles)
         if total <= max_triangles or attempt == 2:
             break
         decimated = True
         deflection *= 4.0 * total / max_triangles
         angle = min(2.0 * angle, 1.0)
-        max_len *= 2.0
+    # what is left of the budget goes to splitting long sheet triangles
+    cap = max(max_triangles - len(solid_mesh.triangles), len(raw.triangles))
+    sheets = _finish_sheets(raw, diag / 40.0, cap)
     total = len(solid_mesh.triangles) + len(sheets.triangles)
     if total > max_triangles:
         share = max_triangles / total
@@ -369,9 +427,9 @@ def draw_profile(ax: Any, mat: Any, *, norm: Any = None, disks: int = 8) -> Any:
     """Draw a 2D medial axis on ``ax`` (the face's own frame): the profile in black, the
     branches coloured by radius, the nodes and the ``disks`` largest maximal disks.
     Returns the branches' ``LineCollection`` (or ``None``)."""
-    import matplotlib.pyplot as plt
     from matplotlib.collections import LineCollection
     from matplotlib.colors import Normalize
+    from matplotlib.patches import Circle
 
     from medialcad.occ.face2d import planar_face
 
@@ -399,7 +457,7 @@ def draw_profile(ax: Any, mat: Any, *, norm: Any = None, disks: int = 8) -> Any:
     for n in sorted(mat.nodes, key=lambda n: -n.radius)[:disks]:
         if n.radius > 0:
             ax.add_patch(
-                plt.Circle(tuple(n.point_2d), n.radius, fill=False, color="tab:orange", lw=0.6)
+                Circle(tuple(n.point_2d), n.radius, fill=False, color="tab:orange", lw=0.6)
             )
     ax.set_aspect("equal")
     ax.autoscale_view()
@@ -455,6 +513,10 @@ def _draw_3d(ax: Any, scene: Scene, norm: Any, cmap: Any) -> None:
         ax.set_ylim(lo[1] - pad, hi[1] + pad)
         ax.set_zlim(lo[2] - pad, hi[2] + pad)
     ax.set_aspect("equal")
+    from matplotlib.ticker import MaxNLocator
+
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(nbins=5))
     ax.set_xlabel("x")
     ax.set_ylabel("y")
     ax.set_zlabel("z")
@@ -483,13 +545,11 @@ def render_png(
         scene: a ready :func:`tessellate` (default: computed with a budget of
             :data:`PNG_MAX_TRIANGLES`).
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     from matplotlib import colormaps
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.cm import ScalarMappable
     from matplotlib.colors import Normalize
+    from matplotlib.figure import Figure
 
     from medialcad.occ.io import _atomic_target
 
@@ -497,31 +557,26 @@ def render_png(
         scene = tessellate(result, solid=solid, max_triangles=PNG_MAX_TRIANGLES)
     cmap = colormaps["viridis"]
     norm = Normalize(0.0, max(scene.rmax, 1e-300))
-    fig = plt.figure(figsize=(14, 6.5))
-    try:
-        ax3 = fig.add_subplot(1, 2, 1, projection="3d", computed_zorder=False)
-        _draw_3d(ax3, scene, norm, cmap)
-        c = scene.counts
-        ax3.set_title(
-            f"{scene.kind}: {c.get('sheets', 0)} sheets, {c.get('seams', 0)} seams, "
-            f"{c.get('skeletal_edges', 0)} skeletal edges, {c.get('junctions', 0)} junctions"
-            + (" (mesh decimated)" if scene.decimated else ""),
-            fontsize=10,
-        )
-        fig.colorbar(
-            ScalarMappable(norm=norm, cmap=cmap),
-            ax=ax3,
-            orientation="horizontal",
-            shrink=0.6,
-            pad=0.06,
-            label="radius",
-        )
-        ax2 = fig.add_subplot(1, 2, 2)
-        draw_profile(ax2, result.mat2d, norm=norm)
-        target = os.fspath(path)
-        from pathlib import Path
-
-        with _atomic_target(Path(target)) as tmp:
-            fig.savefig(tmp, dpi=dpi, format="png", bbox_inches="tight")
-    finally:
-        plt.close(fig)
+    fig = Figure(figsize=(14, 6.5))
+    FigureCanvasAgg(fig)
+    ax3 = fig.add_subplot(1, 2, 1, projection="3d", computed_zorder=False)
+    _draw_3d(ax3, scene, norm, cmap)
+    c = scene.counts
+    ax3.set_title(
+        f"{scene.kind}: {c.get('sheets', 0)} sheets, {c.get('seams', 0)} seams, "
+        f"{c.get('skeletal_edges', 0)} skeletal edges, {c.get('junctions', 0)} junctions"
+        + (" (mesh decimated)" if scene.decimated else ""),
+        fontsize=10,
+    )
+    fig.colorbar(
+        ScalarMappable(norm=norm, cmap=cmap),
+        ax=ax3,
+        orientation="horizontal",
+        shrink=0.6,
+        pad=0.06,
+        label="radius",
+    )
+    ax2 = fig.add_subplot(1, 2, 2)
+    draw_profile(ax2, result.mat2d, norm=norm)
+    with _atomic_target(Path(os.fspath(path))) as tmp:
+        fig.savefig(tmp, dpi=dpi, format="png", bbox_inches="tight")

@@ -265,3 +265,89 @@ def test_help_documents_all_or_nothing(capsys: pytest.CaptureFixture[str]) -> No
     text = " ".join(capsys.readouterr().out.split())
     assert "All or nothing" in text and ".radius.json" in text and "exit codes" in text
     assert "medialcad batch --help" in text
+
+
+# --------------------------------------------------------------------------- thickness, viewer
+
+
+def test_report_gives_the_plates_wall_thickness_and_where(tmp_path: Path) -> None:
+    """A plate 2 thick (with a hole): min = max = 2, at balls centred on its mid-surface."""
+    out, rep = tmp_path / "plate.step", tmp_path / "plate.json"
+    proc = _cli(SOLIDS / "thin_plate.step", "-o", out, "--report", rep)
+    assert proc.returncode == 0, proc.stderr
+    (solid,) = json.loads(rep.read_text())["solids"]
+    wall, tol = solid["thickness"], solid["tol"]
+    assert wall["min"] == pytest.approx(2.0, abs=2 * tol)
+    assert wall["max"] == pytest.approx(2.0, abs=2 * tol)
+    for where in ("min_location", "max_location"):
+        x, y, z = wall[where]
+        assert 0 <= x <= 100 and 0 <= y <= 60 and z == pytest.approx(1.0, abs=tol)
+        assert (x - 50) ** 2 + (y - 30) ** 2 >= 10**2 - tol
+    assert wall["min_entity"] and wall["max_entity"]
+    assert "thickness" in solid["timings"]
+    assert "wall 2..2," in proc.stdout
+
+
+def test_report_gives_the_tubes_wall_thickness(tmp_path: Path) -> None:
+    """A tube with radii 20 and 15: its wall is 5; the largest inscribed ball too."""
+    import cadquery as cq
+
+    from medialcad.occ.io import write_step
+
+    src = tmp_path / "tube.step"
+    write_step([cq.Workplane().circle(20).circle(15).extrude(50).val().wrapped], src)
+    rep = tmp_path / "t.json"
+    assert main([str(src), "-o", str(tmp_path / "t.step"), "--report", str(rep)]) == 0
+    (solid,) = json.loads(rep.read_text())["solids"]
+    assert solid["thickness"]["min"] == pytest.approx(5.0, abs=2 * solid["tol"])
+    assert solid["thickness"]["max"] == pytest.approx(5.0, abs=2 * solid["tol"])
+    x, y, _ = solid["thickness"]["min_location"]
+    assert np.hypot(x, y) == pytest.approx(17.5, abs=solid["tol"])
+
+
+def test_no_thickness_skips_it(tmp_path: Path) -> None:
+    rep = tmp_path / "c.json"
+    args = [str(SOLIDS / "cube.step"), "-o", str(tmp_path / "c.step"), "--report", str(rep)]
+    assert main([*args, "--no-thickness"]) == 0
+    (solid,) = json.loads(rep.read_text())["solids"]
+    assert "thickness" not in solid and "thickness" not in solid["timings"]
+
+
+def test_html_viewer_of_a_solid(tmp_path: Path) -> None:
+    from tests._browser import CHROMIUM, Attrs, console_errors, dump_dom
+
+    out, page = tmp_path / "l.step", tmp_path / "view" / "l.html"
+    proc = _cli(SOLIDS / "housing_bracket.step", "-o", out, "--html", page)
+    assert proc.returncode == 0, proc.stderr
+    assert str(page) in proc.stdout
+    text = page.read_text()
+    assert text.startswith("<!DOCTYPE html>") and "<script" in text
+    assert "http://" not in text and "https://" not in text  # self-contained
+    _no_leftovers(page.parent)
+    if CHROMIUM is None:
+        pytest.skip("chromium not installed: the page was written, not loaded")
+    dom, log = dump_dom(page)
+    attrs = Attrs()
+    attrs.feed(dom)
+    assert attrs.html.get("data-state") == "ok", attrs.html.get("data-error")
+    assert not console_errors(log)
+    assert int(attrs.html.get("data-pixels", "0")) > 20_000
+
+
+def test_html_of_faces_is_refused_and_nothing_written(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out, page = tmp_path / "f.step", tmp_path / "f.html"
+    assert main([str(SOLIDS / "faces_only.step"), "-o", str(out), "--html", str(page)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "--html shows solids" in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_refused_solid_writes_no_viewer(tmp_path: Path) -> None:
+    page = tmp_path / "v.html"
+    proc = _cli(
+        SOLIDS / "loft.step", "-o", tmp_path / "o.step", "--html", page, "--png", tmp_path / "p.png"
+    )
+    assert proc.returncode == 2
+    assert list(tmp_path.iterdir()) == []

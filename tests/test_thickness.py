@@ -107,3 +107,23 @@ def test_thin_plate_fixture() -> None:
 def test_bad_angle(plate: Any) -> None:
     with pytest.raises(ValueError, match="min_angle"):
         wall_thickness(plate, min_angle=200)
+
+
+def test_the_result_answers_the_everyday_question_itself(tube: Any) -> None:
+    """``MedialAxis3D.thickness()`` / ``.thickness_at()`` are the module's functions."""
+    t, want = tube.thickness(), wall_thickness(tube)
+    assert (t.min, t.max, t.min_entity, t.max_entity) == (
+        want.min,
+        want.max,
+        want.min_entity,
+        want.max_entity,
+    )
+    np.testing.assert_array_equal(t.min_location, want.min_location)
+    assert tube.thickness_at((17.5, 0.0, 25.0)) == thickness_at(tube, (17.5, 0.0, 25.0))
+
+
+def test_the_result_writes_its_pictures(plate: Any, tmp_path: Path) -> None:
+    plate.write_png(tmp_path / "p.png", dpi=40)
+    plate.write_html(tmp_path / "p.html")
+    assert (tmp_path / "p.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "medialViewer" in (tmp_path / "p.html").read_text()

@@ -208,6 +208,17 @@ class MedialAxis3D:
             return float(self._curves()[index].radius(params[0]))
         return float(self.junctions[index].radius)
 
+    def thickness_at(self, point: ArrayLike) -> float:
+        """Wall thickness ``2 r`` at the medial point nearest to ``point``."""
+        return 2.0 * self.radius_at(point)
+
+    def thickness(self, *, min_angle: float = 120.0) -> Any:
+        """Minimum and maximum wall thickness with their locations
+        (:func:`medialcad.thickness.wall_thickness`)."""
+        from medialcad.thickness import wall_thickness
+
+        return wall_thickness(self, min_angle=min_angle)
+
     def _curves(self) -> tuple[Seam, ...]:
         return self.seams + self.skeletal_edges + self.rims
 
@@ -255,3 +266,16 @@ class MedialAxis3D:
         from medialcad.occ.io import atomic_text
 
         atomic_text(path, json.dumps(self.radius_data(), indent=1))
+
+    def write_png(self, path: str | os.PathLike[str], *, dpi: int = 150) -> None:
+        """Picture: the solid (translucent) with the complex coloured by radius, beside
+        the profile's 2D medial axis (:func:`medialcad.plot3d.render_png`); headless."""
+        from medialcad.plot3d import render_png
+
+        render_png(self, path, dpi=dpi)
+
+    def write_html(self, path: str | os.PathLike[str]) -> None:
+        """Self-contained interactive 3D viewer (:func:`medialcad.viewer.write_html`)."""
+        from medialcad.viewer import write_html
+
+        write_html(self, path)
