@@ -6,6 +6,7 @@ import logging
 
 from medialcad.api import MedialAxis2D, medial_axis, medial_axis_2d
 from medialcad.errors import (
+    BelowToleranceError,
     ComputationError,
     DegenerateFaceError,
     InputError,
@@ -15,6 +16,7 @@ from medialcad.errors import (
     NotAFaceError,
     NotExtrusionOrRevolutionError,
     OCCError,
+    OpenShellError,
     OpenWireError,
     ReadError,
     SelfIntersectingBoundaryError,
@@ -27,6 +29,7 @@ from medialcad.mat3d.result import Junction, MedialAxis3D, Seam, Sheet
 from medialcad.recognition import Extrusion, Revolution, read_step, recognize
 
 __all__ = [
+    "BelowToleranceError",
     "Branch",
     "ComputationError",
     "DegenerateFaceError",
@@ -46,6 +49,7 @@ __all__ = [
     "NotAFaceError",
     "NotExtrusionOrRevolutionError",
     "OCCError",
+    "OpenShellError",
     "OpenWireError",
     "ReadError",
     "Revolution",

@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from medialcad.errors import (
+    BelowToleranceError,
     ComputationError,
     InputError,
     MedialCadError,
@@ -135,6 +136,7 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
     try:
         boundary = build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=ANGLE_TOL)
         _check_simple(boundary)
+        _check_resolvable(boundary, tol_abs, pf.frame)
         settings = TraceSettings(tol=tol_abs, spacing=pf.diag / 200.0)
         graph = trace_medial_graph(boundary, pf.frame, settings)
     except MedialCadError:
@@ -144,6 +146,42 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
             f"medial axis computation failed: {type(err).__name__}: {err}"
         ) from err
     return MedialAxis2D(graph, pf.face, boundary)
+
+
+FEATURE_TOLERANCES = 2.0
+"""An edge between two corners must be at least this many tolerances long."""
+
+
+def _check_resolvable(boundary: Boundary, tol: float, frame: Frame) -> None:
+    """Refuse features the tolerance cannot resolve: an edge shorter than
+    ``FEATURE_TOLERANCES * tol`` with a corner (not a tangent join) at an end.
+
+    Its medial branches would be shorter than the error allowed on them (a notch of
+    1e-4 on a part of 100 at the default tol 1e-3 gives branches placed no better than
+    the notch itself); tangent-continuous short pieces of a smooth curve are fine.
+    """
+    corners = {
+        (c.loop, round(c.s, 9))
+        for c in boundary.corners
+        if abs(c.turn) > 1e-3  # a real corner, not a G1 join split by the modeller
+    }
+    short = []
+    for e in boundary.elements:
+        if e.piece is None or e.length >= FEATURE_TOLERANCES * tol:
+            continue
+        s1 = (e.s0 + e.length) % boundary.loop_lengths[e.loop]
+        if (e.loop, round(e.s0, 9)) in corners or (e.loop, round(s1, 9)) in corners:
+            short.append(e)
+    if short:
+        e = min(short, key=lambda x: x.length)
+        assert e.piece is not None
+        mid = e.piece.curve.point(np.array([0.5 * (e.piece.t0 + e.piece.t1)]))[0]
+        where = ", ".join(f"{x:.6g}" for x in frame.to_3d(mid[None])[0])
+        raise BelowToleranceError(
+            f"{len(short)} edge(s) between corners are shorter than {FEATURE_TOLERANCES:g} x "
+            f"the tolerance {tol:.3g}; the shortest, {e.length:.3g} long at ({where}), is a "
+            "feature too small to resolve: pass a smaller tol or remove the feature"
+        )
 
 
 def _check_simple(boundary: Boundary) -> None:

@@ -248,7 +248,7 @@ def convert(
         MedialCadError, OSError: an internal failure while computing or writing.
     """
     from medialcad.occ.io import read_shapes
-    from medialcad.occ.shapes import solids
+    from medialcad.occ.shapes import solids_or_shells
 
     _check_tol(tol)
     src, out = Path(input), Path(output)
@@ -267,7 +267,10 @@ def convert(
     all_solids = []
     loose = 0
     for sh in shapes:
-        found = solids(sh)
+        try:
+            found = solids_or_shells(sh)
+        except InputError as err:
+            raise type(err)(f"{src}: {err}") from err
         all_solids.extend(found)
         loose += not found
     if not all_solids:

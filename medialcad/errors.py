@@ -58,12 +58,21 @@ class UnsupportedGeometryError(InputError):
     """A boundary curve type that cannot be converted to an exact representation."""
 
 
+class BelowToleranceError(InputError):
+    """The input has a feature (an edge between corners) shorter than the tolerance can
+    resolve; the message says where and how long."""
+
+
 class ReadError(InputError):
     """A file could not be read (missing, empty, not STEP/BREP, no usable shape)."""
 
 
 class NoSolidError(InputError):
     """The input holds no solid (e.g. a STEP file of loose faces)."""
+
+
+class OpenShellError(NoSolidError):
+    """The input holds a shell that does not close (free edges) instead of a solid."""
 
 
 class NotExtrusionOrRevolutionError(InputError):

@@ -128,15 +128,16 @@ def read_step(path: Any) -> list[Any]:
 
     Raises:
         ReadError: the file is missing, empty, not STEP/BREP or unreadable.
-        NoSolidError: the file holds no solid (e.g. only faces).
+        NoSolidError: the file holds no solid (e.g. only faces); closed shells outside
+            every solid count as solids, an open one raises :class:`OpenShellError`.
     """
     from medialcad.errors import NoSolidError
     from medialcad.occ.io import read_shapes
-    from medialcad.occ.shapes import solids
+    from medialcad.occ.shapes import solids_or_shells
 
     found = []
     for shape in read_shapes(path):
-        found.extend(solids(shape))
+        found.extend(solids_or_shells(shape))
     if not found:
         raise NoSolidError(f"{path}: the file holds no solid")
     return found

@@ -693,19 +693,9 @@ def test_rounded_rectangle_torus_closed_form() -> None:
     assert_topology("rounded rectangle", m, solid)
 
 
-SECTION_ARCS = pytest.mark.xfail(
-    strict=False,
-    reason="full revolution: the meridian section (occ/recognize.py:_section, a Boolean "
-    "common with a half plane) turns 2 of the 4 fillet arcs into 53- and 56-pole B-splines; "
-    "the 2D MAT ends their bisectors on a degree-1 BRANCH_POINT (6 and 12 footpoints) "
-    "instead of a CURVATURE_CENTRE and revolution._end_role names those circles 'seam': 8 "
-    "seams bound one sheet (0.2 off the boundary), skeletal length 18.85 of 37.70",
-)
-
-
 @pytest.mark.parametrize(
     "angle",
-    [pytest.param(TWO_PI, id="full", marks=[SECTION_ARCS]), pytest.param(TWO_PI / 3, id="120deg")],
+    [pytest.param(TWO_PI, id="full"), pytest.param(TWO_PI / 3, id="120deg")],
 )
 def test_fillet_centres_are_skeletal_edges(angle: float) -> None:
     """The centre of a convex fillet is a curvature-centre end of the profile's MAT: revolved,

@@ -80,14 +80,16 @@ def build_complex(
             )
     seams, rims = _row_curves(cb, row_radius, seam_roles)
     skeletal: list[Seam] = []
+    named = _ShapeSet(s.edge for s in seams + rims)
     for ln in lines:
         v0, v1 = cb.vertex(ln.p0), cb.vertex(ln.p1)
         if v0 == v1:
             continue
         key = (min(v0, v1), max(v0, v1))
         e = cb.line_edges.get(key) or cb.line_edge(v0, v1)
-        if any(s.edge.IsSame(e.edge) for s in seams + skeletal + rims):
+        if e.edge in named:
             continue
+        named.add(e.edge)
         target = {"seam": seams, "skeletal": skeletal, "rim": rims}[ln.role]
         target.append(Seam("", e.edge, ln.role, _LINEAR, 1, np.array([ln.radius, ln.radius])))
     seams, skeletal, rims = (
@@ -96,7 +98,10 @@ def build_complex(
         _numbered(rims, "rim"),
     )
     juncs = _junctions(cb, junctions)
-    extra = [s.edge for s in skeletal if not _in_faces(cb, s.edge)]
+    line_edges = _ShapeSet(e.edge for e in cb.line_edges.values())
+    in_faces = _face_edges(cb)
+    # line edges made only for naming bound no face: they go into the compound loose
+    extra = [s.edge for s in skeletal if not (s.edge in line_edges and s.edge in in_faces)]
     comp = cb.compound(extra)
     return tuple(sheets), tuple(seams), tuple(skeletal), tuple(rims), tuple(juncs), comp
 
@@ -138,22 +143,35 @@ def _junctions(cb: Any, junctions: list[tuple[FloatArray, float]]) -> list[Junct
     return out
 
 
-def _in_faces(cb: Any, edge: Any) -> bool:
-    """Whether ``edge`` bounds a face already (line edges made only for naming do not)."""
-    return any(edge.IsSame(e.edge) for e in cb.line_edges.values()) and _used(cb, edge)
+class _ShapeSet:
+    """Shapes up to orientation (``IsSame``), hashed: ``in`` is O(1)."""
+
+    def __init__(self, shapes: Any = ()) -> None:
+        from OCP.TopTools import TopTools_MapOfShape
+
+        self._map = TopTools_MapOfShape()
+        for sh in shapes:
+            self._map.Add(sh)
+
+    def add(self, shape: Any) -> None:
+        self._map.Add(shape)
+
+    def __contains__(self, shape: Any) -> bool:
+        return bool(self._map.Contains(shape))
 
 
-def _used(cb: Any, edge: Any) -> bool:
+def _face_edges(cb: Any) -> _ShapeSet:
+    """Every edge that bounds a face of the complex."""
     from OCP.TopAbs import TopAbs_EDGE
     from OCP.TopExp import TopExp_Explorer
 
+    out = _ShapeSet()
     for f in cb.faces:
         ex = TopExp_Explorer(f, TopAbs_EDGE)
         while ex.More():
-            if ex.Current().IsSame(edge):
-                return True
+            out.add(ex.Current())
             ex.Next()
-    return False
+    return out
 
 
 def build_grid_complex(
@@ -219,11 +237,11 @@ def build_grid_complex(
             )
     seams, rims = _row_curves(cb, row_radius, seam_roles)
     skeletal: list[Seam] = []
-    seen: list[Any] = []
+    seen = _ShapeSet()
     for edge, role, rad in named_sides:
-        if any(edge.IsSame(x) for x in seen):
+        if edge in seen:
             continue
-        seen.append(edge)
+        seen.add(edge)
         target = {"seam": seams, "skeletal": skeletal, "rim": rims}[role]
         target.append(Seam("", edge, role, _LINEAR, 1, np.array([rad, rad])))
     extra: list[Any] = []
@@ -243,7 +261,8 @@ def build_grid_complex(
         _numbered(rims, "rim"),
     )
     juncs = _junctions(cb, junctions)
-    loose = [e for e in extra if not _used(cb, e)]
+    in_faces = _face_edges(cb)
+    loose = [e for e in extra if e not in in_faces]
     if not cb.faces and not loose:
         loose = [j.vertex for j in juncs]
     comp = cb.compound(loose)

@@ -18,8 +18,10 @@ nested by their 2D polygons.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Hashable, Sequence
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -54,13 +56,21 @@ class Row:
 
 
 def _knots_mults(t: FloatArray) -> tuple[TColStd_Array1OfReal, TColStd_Array1OfInteger]:
+    """OCC knots and multiplicities of a flat knot vector (cached: the rows of a segment
+    share theirs; OCC copies the arrays it is given)."""
+    t = np.ascontiguousarray(t, dtype=float)
+    return _knots_mults_cached(t.tobytes())
+
+
+@lru_cache(maxsize=4096)
+def _knots_mults_cached(raw: bytes) -> tuple[TColStd_Array1OfReal, TColStd_Array1OfInteger]:
     vals: list[float] = []
     mults: list[int] = []
-    for x in t:
-        if vals and abs(x - vals[-1]) <= 1e-13:
+    for x in np.frombuffer(raw, dtype=float).tolist():
+        if vals and x - vals[-1] <= 1e-13:
             mults[-1] += 1
         else:
-            vals.append(float(x))
+            vals.append(x)
             mults.append(1)
     k = TColStd_Array1OfReal(1, len(vals))
     m = TColStd_Array1OfInteger(1, len(vals))
@@ -102,23 +112,29 @@ class ComplexBuilder:
     line_edges: dict[tuple[int, int], _Edge] = field(default_factory=dict)
     faces: list[TopoDS_Face] = field(default_factory=list)
     _grid: dict[tuple[int, int, int], list[int]] = field(default_factory=dict)
+    _xyz: list[tuple[float, float, float]] = field(default_factory=list)
 
     # -- vertices ------------------------------------------------------------------
     def vertex(self, p: FloatArray) -> int:
         p = np.asarray(p, dtype=float)
-        cell = tuple(int(x) for x in np.floor(p / (4 * self.merge)))
+        x, y, z = p.tolist()
+        size = 4 * self.merge
+        cell = (math.floor(x / size), math.floor(y / size), math.floor(z / size))
+        grid, merge2 = self._grid, self.merge * self.merge
         for dx in (-1, 0, 1):
             for dy in (-1, 0, 1):
                 for dz in (-1, 0, 1):
-                    for i in self._grid.get((cell[0] + dx, cell[1] + dy, cell[2] + dz), ()):
-                        if np.linalg.norm(self.points[i] - p) <= self.merge:
+                    for i in grid.get((cell[0] + dx, cell[1] + dy, cell[2] + dz), ()):
+                        qx, qy, qz = self._xyz[i]
+                        if (qx - x) ** 2 + (qy - y) ** 2 + (qz - z) ** 2 <= merge2:
                             return i
         v = TopoDS_Vertex()
         self.builder.MakeVertex(v, _pnt(p), self.tol)
         self.points.append(p)
+        self._xyz.append((x, y, z))
         self.vertices.append(v)
         i = len(self.points) - 1
-        self._grid.setdefault(cell, []).append(i)  # type: ignore[arg-type]
+        self._grid.setdefault(cell, []).append(i)
         return i
 
     # -- edges ---------------------------------------------------------------------

@@ -21,6 +21,7 @@ guards against a misread.
 
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import dataclass, replace
 from typing import Any
@@ -33,6 +34,7 @@ from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_NurbsConvert
+from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools
 from OCP.GeomAbs import (
@@ -61,12 +63,13 @@ from medialcad.errors import (
 )
 from medialcad.frame import Frame
 from medialcad.occ.io import occ_guard
-from medialcad.occ.shapes import as_topods, compound, edges, faces, solids
+from medialcad.occ.shapes import as_topods, compound, edges, faces, solids_or_shells
 from medialcad.recognition import Extrusion, Revolution, SolidKind
 
 __all__ = ["recognize_solid"]
 
 FloatArray = NDArray[np.float64]
+log = logging.getLogger(__name__)
 GRID = 7  # samples per parameter direction and face
 VOLUME_RTOL = 2e-3
 """Relative slack of the volume check: OCC integrates volumes bounded by B-spline faces
@@ -439,7 +442,7 @@ def _perp(d: FloatArray) -> FloatArray:
 
 def _single_solid(obj: Any) -> TopoDS_Shape:
     shape = as_topods(obj)
-    found = solids(shape)
+    found = solids_or_shells(shape)
     if not found:
         raise NoSolidError("the input holds no solid")
     if len(found) > 1:
@@ -469,8 +472,12 @@ def recognize_solid(obj: Any, tol: float | None = None) -> SolidKind:
         )
     if rev is not None:
         return replace(rev, solid=solid, diag=diag)
+    invalid = ""
+    with occ_guard("checking the solid"):
+        if not BRepCheck_Analyzer(solid).IsValid():
+            invalid = " (and it is not a valid solid: OCC's BRepCheck_Analyzer rejects it)"
     raise NotExtrusionOrRevolutionError(
-        "the solid is neither an extrusion nor a revolution: " + "; ".join(reasons)
+        "the solid is neither an extrusion nor a revolution" + invalid + ": " + "; ".join(reasons)
     )
 
 
@@ -528,19 +535,14 @@ def _recognize_revolution(
             continue
         centre = np.mean([f.centroid for f in data], axis=0)
         origin = a + ((centre - a) @ d) * d
-        if got.start_dir is None:
-            # a full revolution: cut the meridian section at an angle clear of seam edges
-            xdir = _perp(d)
-            phi = 0.7318  # arbitrary, fixed: deterministic
-            xdir = math.cos(phi) * xdir + math.sin(phi) * np.cross(d, xdir)
-        else:
-            xdir = got.start_dir
-        frame = Frame(origin, xdir, d)
         try:
-            if got.start:
-                profile = _merge_faces([f.face for f in got.start], "start cap")
+            if got.start_dir is None:
+                frame, profile = _full_section(
+                    solid, origin, d, diag + float(np.linalg.norm(origin))
+                )
             else:
-                profile = _section(solid, frame, diag + float(np.linalg.norm(origin)))
+                frame = Frame(origin, got.start_dir, d)
+                profile = _merge_faces([f.face for f in got.start], "start cap")
         except MedialCadError as err:
             first_reason = first_reason or f"not a revolution ({err})"
             continue
@@ -553,6 +555,29 @@ def _recognize_revolution(
         return Revolution(a, d, got.angle, profile, frame, touches, got.deviation, None)
     reasons.append(first_reason or "not a revolution (no candidate axis)")
     return None
+
+
+SECTION_ANGLES = (0.7318, 2.2871, 4.0307, 5.5243)
+"""Where full revolutions are cut (radians from a fixed perpendicular of the axis): odd
+angles clear of seam edges; the next one is tried when OCC's Boolean common fails there."""
+
+
+def _full_section(
+    solid: TopoDS_Shape, origin: FloatArray, d: FloatArray, size: float
+) -> tuple[Frame, TopoDS_Face]:
+    """The frame and meridian section of a full revolution about ``(origin, d)``."""
+    first: MedialCadError | None = None
+    base = _perp(d)
+    for phi in SECTION_ANGLES:
+        xdir = math.cos(phi) * base + math.sin(phi) * np.cross(d, base)
+        frame = Frame(origin, xdir, d)
+        try:
+            return frame, _section(solid, frame, size)
+        except MedialCadError as err:
+            log.debug("meridian section at %.4f rad failed: %s", phi, err)
+            first = first or err
+    assert first is not None
+    raise first
 
 
 def _touches_axis(profile: TopoDS_Face, frame: Frame, lin_tol: float) -> bool:

@@ -21,7 +21,7 @@ from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.GeomAbs import GeomAbs_Plane
 from OCP.GeomLib import GeomLib_IsPlanarSurface
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_ShapeEnum, TopAbs_SOLID
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_ShapeEnum, TopAbs_SHELL, TopAbs_SOLID
 from OCP.TopExp import TopExp
 from OCP.TopoDS import (
     TopoDS,
@@ -29,11 +29,12 @@ from OCP.TopoDS import (
     TopoDS_Edge,
     TopoDS_Face,
     TopoDS_Shape,
+    TopoDS_Shell,
     TopoDS_Solid,
 )
-from OCP.TopTools import TopTools_IndexedMapOfShape
+from OCP.TopTools import TopTools_IndexedDataMapOfShapeListOfShape, TopTools_IndexedMapOfShape
 
-from medialcad.errors import InputError, NonPlanarFaceError, NotAFaceError
+from medialcad.errors import InputError, NonPlanarFaceError, NotAFaceError, OpenShellError
 
 __all__ = [
     "as_topods",
@@ -44,6 +45,7 @@ __all__ = [
     "shape_kind",
     "single_face",
     "solids",
+    "solids_or_shells",
 ]
 
 _KIND_NAMES = {
@@ -131,6 +133,89 @@ def faces(shape: TopoDS_Shape) -> list[TopoDS_Face]:
 def solids(shape: TopoDS_Shape) -> list[TopoDS_Solid]:
     """Distinct solids of ``shape`` (the shape itself if it is a solid), in exploration order."""
     return [TopoDS.Solid_s(s) for s in _unique(shape, TopAbs_SOLID)]
+
+
+def _free_shells(shape: TopoDS_Shape) -> list[TopoDS_Shell]:
+    """Shells of ``shape`` that belong to no solid of it."""
+    inside = TopTools_IndexedMapOfShape()
+    for s in _unique(shape, TopAbs_SOLID):
+        TopExp.MapShapes_s(s, TopAbs_SHELL, inside)
+    return [TopoDS.Shell_s(s) for s in _unique(shape, TopAbs_SHELL) if not inside.Contains(s)]
+
+
+def _free_edge_count(shell: TopoDS_Shell) -> int:
+    """Edges used by exactly one face of ``shell`` (seam edges count twice: closed)."""
+    owners = TopTools_IndexedDataMapOfShapeListOfShape()
+    TopExp.MapShapesAndAncestors_s(shell, TopAbs_EDGE, TopAbs_FACE, owners)
+    free = 0
+    for i in range(1, owners.Extent() + 1):
+        edge = TopoDS.Edge_s(owners.FindKey(i))
+        if BRep_Tool.Degenerated_s(edge):
+            continue
+        users = owners.FindFromIndex(i)
+        if users.Size() == 1 and not BRep_Tool.IsClosed_s(edge, TopoDS.Face_s(users.First())):
+            free += 1
+    return free
+
+
+def _shell_solid(shell: TopoDS_Shell) -> TopoDS_Solid:
+    """The solid bounded by a closed shell, oriented so that its faces point outwards."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeSolid
+    from OCP.ShapeFix import ShapeFix_Solid
+
+    from medialcad.occ.io import occ_guard
+
+    with occ_guard("making a solid from a closed shell"):
+        made = BRepBuilderAPI_MakeSolid(shell)
+        if not made.IsDone():
+            raise OpenShellError("a closed shell could not be made into a solid")
+        fix = ShapeFix_Solid(made.Solid())
+        fix.Perform()
+        return TopoDS.Solid_s(solids(fix.Shape())[0])
+
+
+def _one_plane(shell: TopoDS_Shell) -> bool:
+    """Whether every face of ``shell`` lies in one plane (a sheet of planar regions)."""
+    planes = []
+    for face in faces(shell):
+        if not is_planar(face):
+            return False
+        surface = BRep_Tool.Surface_s(face)
+        found = GeomLib_IsPlanarSurface(surface, DEFAULT_PLANAR_TOLERANCE)
+        if not found.IsPlanar():
+            return False
+        planes.append(found.Plan())
+    p0 = planes[0]
+    for p in planes[1:]:
+        if not p.Axis().IsParallel(p0.Axis(), 1e-9):
+            return False
+        if p0.Distance(p.Location()) > 1e-7 * max(1.0, p0.Location().Distance(p.Location())):
+            return False
+    return True
+
+
+def solids_or_shells(shape: TopoDS_Shape) -> list[TopoDS_Solid]:
+    """The solids of ``shape`` and, as solids, its closed shells that belong to no solid
+    (files from surface modellers often hold a closed ``SHELL`` and no ``SOLID``).
+
+    Open shells of planar faces in one plane (how STEP files of loose faces arrive) are
+    left alone: they are faces, not solids.
+
+    Raises:
+        OpenShellError: a shell outside every solid does not close and is not flat: a
+            surface model (e.g. a solid with a face missing), not a solid.
+    """
+    found = solids(shape)
+    for i, shell in enumerate(_free_shells(shape), start=1):
+        free = _free_edge_count(shell)
+        if not free:
+            found.append(_shell_solid(shell))
+        elif not _one_plane(shell):
+            raise OpenShellError(
+                f"shell {i} (with {_plural(len(faces(shell)), 'face')}) is open: {free} free "
+                "edge(s) bound no volume, so it is not a solid"
+            )
+    return found
 
 
 def edges(shape: TopoDS_Shape) -> list[TopoDS_Edge]:
