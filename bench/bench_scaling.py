@@ -6,7 +6,9 @@
 Each case runs in its own process (peak RSS from ``resource``), with a time budget per
 case: sizes beyond the budget are reported as such, not silently dropped.
 
-    python bench/bench_scaling.py [--budget 120] [--out bench/results_scaling.md]
+    python bench/bench_scaling.py [--budget 120] [--only 2d|3d] [--out bench/results_scaling.md]
+
+With ``--only``, the rows of the other kind are kept from the existing results file.
 """
 
 from __future__ import annotations
@@ -74,13 +76,34 @@ def run_case(kind: str, n: int, budget: float) -> dict:
     return out
 
 
+def _previous_rows(path: Path, kind: str) -> list[dict]:
+    """The rows of ``kind`` in an existing results table (kept by ``--only``)."""
+    label = "2D polygon edges" if kind == "2d" else "3D gear teeth"
+    rows: list[dict] = []
+    if not path.exists():
+        return rows
+    for line in path.read_text().splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) < 5 or cells[0] != label:
+            continue
+        row: dict = {"kind": kind, "n": int(cells[1]), "status": cells[2]}
+        if cells[2] == "ok":
+            row.update(time=float(cells[3]), peak_rss_mb=float(cells[4]))
+        rows.append(row)
+    return rows
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--budget", type=float, default=120.0, help="seconds per case")
     ap.add_argument("--out", default=str(ROOT / "bench" / "results_scaling.md"))
+    ap.add_argument("--only", choices=("2d", "3d"), help="run one kind only")
     args = ap.parse_args()
     rows = []
     for kind, sizes in (("2d", (10, 100, 1000, 10000)), ("3d", (10, 25, 50, 100, 200))):
+        if args.only is not None and kind != args.only:
+            rows += _previous_rows(Path(args.out), kind)
+            continue
         prev = None
         for n in sizes:
             if prev is not None and prev.get("status") != "ok":
@@ -90,6 +113,7 @@ def main() -> None:
             rows.append(r)
             prev = r
             print(json.dumps(r), flush=True)
+    rows.sort(key=lambda r: r["kind"])  # 2D rows first, as without --only
     lines = [
         "| case | n | status | time s | peak RSS MB | growth exponent |",
         "|---|---|---|---|---|---|",

@@ -4,18 +4,28 @@ tangent at ``b`` and where else it touches the boundary (THEORY.md Sec. 0).
 The disk centred at ``b + rho n`` with radius ``rho`` passes through a boundary point
 ``q`` when ``rho = f(q) = |q - b|^2 / (2 (q - b).n)``; the maximal disk has
 ``rho* = min_q f(q)`` over the whole boundary, together with the curvature bound
-``1/k(b)`` (the limit of ``f`` as ``q -> b`` on the same curve). The minimum is found on
-dense candidate points, then solved exactly on each candidate element: in closed form for
-a reflex vertex, by safeguarded Newton on ``df/dt = 0`` for a curve (for every curve type,
-on its exact parameterization).
+``1/k(b)`` (the limit of ``f`` as ``q -> b`` on the same curve). The minimum is solved
+exactly on each candidate element: in closed form for a line, a circle or a reflex
+vertex, by safeguarded Newton on ``df/dt = 0`` for any other curve (on its exact
+parameterization, started from dense candidate points).
+
+Only elements that can hold the minimum are solved: ``f(q) <= R`` exactly when ``q`` lies
+in the closed disk of radius ``R`` centred at ``b + R n``. An upper bound ``R`` comes from
+a shrinking-ball search on a point cloud of the boundary; the elements whose bounding
+circles meet that disk are solved exactly, and a sample whose minimum exceeds ``R`` is
+solved again with ``2 R``. The answer is the minimum over the whole boundary: every
+element left out has ``f > R`` everywhere.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import itertools
+from dataclasses import dataclass, fields
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.spatial import cKDTree
 
 from medialcad.mat2d.boundary import Boundary, Element
 from medialcad.mat2d.curves import CircleCurve, LineCurve
@@ -27,6 +37,8 @@ IntArray = NDArray[np.int64]
 BoolArray = NDArray[np.bool_]
 
 _CHUNK_CELLS = 3_000_000
+_KNN = 16  # neighbours fetched per size class before falling back to a ball query
+LINE, CIRCLE, VERTEX, GENERAL = 0, 1, 2, 3
 
 
 @dataclass(frozen=True)
@@ -35,7 +47,9 @@ class Candidates:
 
     Lines, circles and reflex vertices are solved in closed form (their tables below);
     every other curve has dense candidate points (contiguous per element, in parameter
-    order) and a Newton solve on its exact parameterization.
+    order) and a Newton solve on its exact parameterization. Every element also has a
+    bounding circle (indexed by KD-trees, one per size class) and points on a cloud that
+    covers the boundary (for the shrinking-ball bound).
     """
 
     points: FloatArray  # (K, 2) candidates of general curves
@@ -64,6 +78,19 @@ class Candidates:
     spacing: float  # candidate spacing of general curves
     reflex_end: BoolArray  # (E, 2): the edge's low / high parameter end is a reflex vertex
     touch: IntArray  # (E, 2): the element met at the edge's low / high parameter end
+    ring: IntArray  # (E, 4): the elements one and two before and after, along the loop
+    kind: IntArray  # (E,) LINE, CIRCLE, VERTEX or GENERAL
+    pos: IntArray  # (E,) row of the element in its kind's table
+    el_loop: IntArray  # (E,)
+    el_s0: FloatArray  # (E,)
+    el_len: FloatArray  # (E,)
+    el_a: FloatArray  # (E,) parameter (edge) or normal angle (vertex) at s0
+    el_b: FloatArray  # (E,) ... at s0 + length
+    bound_c: FloatArray  # (E, 2) bounding circle of each element
+    bound_h: FloatArray  # (E,)
+    trees: tuple[tuple[cKDTree, IntArray, float], ...]  # (tree of centres, ids, largest h)
+    cloud: cKDTree  # points on the boundary, for the shrinking-ball bound
+    diag: float
 
 
 @dataclass(frozen=True)
@@ -84,7 +111,7 @@ class MapSamples:
     partner_s: FloatArray
     is_self: BoolArray  # rho* = 1/k(b): the centre of curvature is the medial point
 
-    @property
+    @cached_property
     def centre(self) -> FloatArray:
         return np.asarray(self.foot + self.radius[:, None] * self.normal)
 
@@ -92,12 +119,16 @@ class MapSamples:
         return len(self.s)
 
     def take(self, idx: IntArray | BoolArray) -> MapSamples:
-        return MapSamples(**{k: v[idx] for k, v in self.__dict__.items()})
+        return MapSamples(**{f.name: getattr(self, f.name)[idx] for f in fields(MapSamples)})
 
     @staticmethod
     def concat(parts: list[MapSamples]) -> MapSamples:
-        keys = parts[0].__dict__.keys()
-        return MapSamples(**{k: np.concatenate([p.__dict__[k] for p in parts]) for k in keys})
+        return MapSamples(
+            **{
+                f.name: np.concatenate([getattr(p, f.name) for p in parts])
+                for f in fields(MapSamples)
+            }
+        )
 
 
 def _edge_params(e: Element, spacing: float) -> FloatArray:
@@ -114,34 +145,105 @@ def _edge_params(e: Element, spacing: float) -> FloatArray:
     return np.linspace(p.t0, p.t1, n + 1)
 
 
+def _bounding_circle(pts: FloatArray, gap: float) -> tuple[FloatArray, float]:
+    """A circle holding the curve through ``pts`` whose consecutive points are joined by
+    stretches no longer than ``2 gap`` (so every curve point is within ``gap`` of one)."""
+    c = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+    return c, float(np.linalg.norm(pts - c, axis=1).max()) + gap
+
+
+def _size_trees(
+    centres: FloatArray, reach: FloatArray, diag: float
+) -> tuple[tuple[cKDTree, IntArray, float], ...]:
+    """KD-trees of the bounding-circle centres, one per size class (factor 4 apart), so
+    that a query radius padded by the class's largest reach stays local."""
+    cls = np.floor(np.log(np.maximum(reach, 1e-6 * diag) / diag) / np.log(4.0)).astype(np.int64)
+    out = []
+    for k in np.unique(cls):
+        ids = np.nonzero(cls == k)[0].astype(np.int64)
+        out.append((cKDTree(centres[ids]), ids, float(reach[ids].max())))
+    return tuple(out)
+
+
+def _cloud_points(e: Element, spacing: float) -> FloatArray:
+    """Points on a curved element, at most ``spacing`` apart and every 10 degrees on
+    arcs (line segments: :func:`_segment_cloud`)."""
+    assert e.piece is not None
+    c = e.piece.curve
+    n = int(np.clip(np.ceil(e.length / spacing), 1, 100_000))
+    if isinstance(c, CircleCurve):
+        n = max(n, int(np.ceil(abs(e.piece.t1 - e.piece.t0) / np.radians(10.0))))
+    return c.point(np.linspace(e.piece.t0, e.piece.t1, n + 1))
+
+
+def _segment_cloud(a: FloatArray, b: FloatArray, spacing: float) -> FloatArray:
+    """Points on segments ``a[i] -> b[i]``, at most ``spacing`` apart, ends included."""
+    if len(a) == 0:
+        return np.zeros((0, 2))
+    n = np.ceil(np.linalg.norm(b - a, axis=1) / spacing).astype(np.int64).clip(1, 100_000) + 1
+    seg = np.repeat(np.arange(len(a)), n)
+    first = np.concatenate([[0], np.cumsum(n)[:-1]])
+    f = (np.arange(len(seg)) - first[seg]) / (n[seg] - 1)
+    return np.asarray(a[seg] + f[:, None] * (b - a)[seg])
+
+
 def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
     """Closed-form tables for lines, circles and reflex vertices; dense candidate points
-    for every other curve."""
-    pts, elem, par, starts, stops, general = [], [], [], [], [], []
+    for every other curve; bounding circles and the point cloud of every element."""
+    pts: list[FloatArray] = []
+    elem: list[IntArray] = []
+    par: list[FloatArray] = []
+    starts: list[int] = []
+    stops: list[int] = []
+    general: list[int] = []
     lines: list[tuple[int, FloatArray, FloatArray, FloatArray, float, float]] = []
     circles: list[tuple[int, FloatArray, float, FloatArray, FloatArray, float, float]] = []
     verts: list[tuple[int, FloatArray]] = []
+    n_el = len(boundary.elements)
+    kind = np.zeros(n_el, dtype=np.int64)
+    pos = np.zeros(n_el, dtype=np.int64)
+    el_a = np.zeros(n_el)
+    el_b = np.zeros(n_el)
+    bound_c = np.zeros((n_el, 2))
+    bound_h = np.zeros(n_el)
+    cloud: list[FloatArray] = []
+    pad = 1e-9 * boundary.diag
     k = 0
     for e in boundary.elements:
         if e.piece is None:
             assert e.vertex is not None
+            kind[e.index], pos[e.index] = VERTEX, len(verts)
+            el_a[e.index], el_b[e.index] = e.theta0, e.theta1
+            bound_c[e.index], bound_h[e.index] = e.vertex, pad
             verts.append((e.index, e.vertex))
             continue
         c = e.piece.curve
+        el_a[e.index], el_b[e.index] = e.piece.t0, e.piece.t1
         lo, hi = sorted((e.piece.t0, e.piece.t1))
         sense = 1.0 if e.piece.t1 > e.piece.t0 else -1.0
         if isinstance(c, LineCurve):
             tan = sense * c.direction
+            kind[e.index], pos[e.index] = LINE, len(lines)
             lines.append((e.index, c.origin, c.direction, np.array([-tan[1], tan[0]]), lo, hi))
             continue
         if isinstance(c, CircleCurve):
+            kind[e.index], pos[e.index] = CIRCLE, len(circles)
+            step = (hi - lo) / 36
+            arc = c.point(np.linspace(lo, hi, 37))
+            bound_c[e.index], bound_h[e.index] = _bounding_circle(arc, c.radius * step + pad)
             circles.append((e.index, c.center, c.radius, c.xaxis, c.yaxis, lo, hi))
+            cloud.append(_cloud_points(e, spacing))
             continue
         t = _edge_params(e, spacing)
+        kind[e.index], pos[e.index] = GENERAL, len(general)
         starts.append(k)
         k += len(t)
         stops.append(k)
-        pts.append(e.piece.curve.point(t))
+        p = e.piece.curve.point(t)
+        chord = float(np.linalg.norm(np.diff(p, axis=0), axis=1).max())
+        bound_c[e.index], bound_h[e.index] = _bounding_circle(p, 2.0 * chord + pad)
+        pts.append(p)
+        cloud.append(p)
         elem.append(np.full(len(t), e.index))
         par.append(t)
         general.append(e.index)
@@ -156,6 +258,14 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
         return np.array([r[i] for r in rows], dtype=float)
 
     touch = _touching(boundary)
+    line_o, line_d = col(lines, 1, 2), col(lines, 2, 2)
+    line_ids = np.array([r[0] for r in lines], dtype=i64)
+    vert_p = col(verts, 1, 2)
+    ends_lo = line_o + col(lines, 4)[:, None] * line_d
+    ends_hi = line_o + col(lines, 5)[:, None] * line_d
+    bound_c[line_ids] = 0.5 * (ends_lo + ends_hi)
+    bound_h[line_ids] = 0.5 * np.linalg.norm(ends_hi - ends_lo, axis=1) + pad
+    cloud += [vert_p, _segment_cloud(ends_lo, ends_hi, spacing)]
     return Candidates(
         points=np.vstack(pts) if pts else np.zeros((0, 2)),
         element=np.concatenate(elem).astype(i64) if elem else np.zeros(0, dtype=i64),
@@ -163,9 +273,9 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
         starts=np.array(starts, dtype=i64),
         stops=np.array(stops, dtype=i64),
         general=np.array(general, dtype=i64),
-        lines=np.array([r[0] for r in lines], dtype=i64),
-        line_o=col(lines, 1, 2),
-        line_d=col(lines, 2, 2),
+        lines=line_ids,
+        line_o=line_o,
+        line_d=line_d,
         line_nu=col(lines, 3, 2),
         line_lo=col(lines, 4),
         line_hi=col(lines, 5),
@@ -177,12 +287,25 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
         circ_lo=col(circles, 5),
         circ_hi=col(circles, 6),
         vertices=np.array([r[0] for r in verts], dtype=i64),
-        vert_p=col(verts, 1, 2),
+        vert_p=vert_p,
         elem_key=keys,
         loop_offset=offset,
         spacing=spacing,
         reflex_end=_reflex_ends(boundary, touch),
         touch=touch,
+        ring=_ring(boundary),
+        kind=kind,
+        pos=pos,
+        el_loop=np.array([e.loop for e in boundary.elements], dtype=i64),
+        el_s0=np.array([e.s0 for e in boundary.elements]),
+        el_len=np.array([e.length for e in boundary.elements]),
+        el_a=el_a,
+        el_b=el_b,
+        bound_c=bound_c,
+        bound_h=bound_h,
+        trees=_size_trees(bound_c, bound_h, boundary.diag),
+        cloud=cKDTree(np.vstack(cloud)),
+        diag=boundary.diag,
     )
 
 
@@ -190,14 +313,28 @@ def _touching(boundary: Boundary) -> IntArray:
     """For each edge, the element it meets at its low / high parameter end."""
     els = boundary.elements
     out = np.full((len(els), 2), -1, dtype=np.int64)
+    by_loop: dict[int, list[Element]] = {}
     for e in els:
-        if e.piece is None:
-            continue
-        same = [x for x in els if x.loop == e.loop]
-        k = same.index(e)
-        before, after = same[k - 1].index, same[(k + 1) % len(same)].index
-        forward = e.piece.t1 > e.piece.t0
-        out[e.index] = (before, after) if forward else (after, before)
+        by_loop.setdefault(e.loop, []).append(e)
+    for same in by_loop.values():
+        for k, e in enumerate(same):
+            if e.piece is None:
+                continue
+            before, after = same[k - 1].index, same[(k + 1) % len(same)].index
+            forward = e.piece.t1 > e.piece.t0
+            out[e.index] = (before, after) if forward else (after, before)
+    return out
+
+
+def _ring(boundary: Boundary) -> IntArray:
+    """For each element, the elements one and two before and after it on its loop."""
+    out = np.zeros((len(boundary.elements), 4), dtype=np.int64)
+    by_loop: dict[int, list[int]] = {}
+    for e in boundary.elements:
+        by_loop.setdefault(e.loop, []).append(e.index)
+    for ids in by_loop.values():
+        a = np.array(ids, dtype=np.int64)
+        out[a] = np.column_stack([np.roll(a, 1), np.roll(a, -1), np.roll(a, 2), np.roll(a, -2)])
     return out
 
 
@@ -206,6 +343,10 @@ def _reflex_ends(boundary: Boundary, touch: IntArray) -> BoolArray:
     element owns that point: a minimum of ``f`` clamped there is the vertex's)."""
     is_vertex = np.array([e.is_vertex for e in boundary.elements] + [False])
     return np.asarray(is_vertex[touch] & (touch != np.arange(len(touch))[:, None]))
+
+
+def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
+    return np.asarray(np.einsum("ij,ij->i", a, b))
 
 
 def _f_values(q: FloatArray, b: FloatArray, n: FloatArray, tiny: float) -> FloatArray:
@@ -269,198 +410,491 @@ def _refine_on_edge(
 _Best = tuple[FloatArray, IntArray, FloatArray]  # value, element, parameter per sample
 
 
-def _pick(vals: FloatArray, params: FloatArray, ids: IntArray) -> _Best:
-    """Per-row minimum of an ``(m, E)`` block: value, element id and parameter."""
-    if vals.shape[1] == 0:
-        m = vals.shape[0]
-        return np.full(m, np.inf), np.full(m, -1, dtype=np.int64), np.zeros(m)
-    j = np.argmin(vals, axis=1)
-    r = np.arange(len(j))
-    return vals[r, j], ids[j], params[r, j]
+@dataclass(frozen=True)
+class _Rows:
+    """The samples whose minimum is being solved (struct of arrays)."""
+
+    b: FloatArray  # (m, 2) boundary point
+    n: FloatArray  # (m, 2) inward normal
+    own: IntArray  # own element
+    own_param: FloatArray
+    self_bound: FloatArray  # 1/k (inf where not convex)
+    near: FloatArray  # partners on the own curve closer than this are self
+
+    def take(self, idx: IntArray) -> _Rows:
+        return _Rows(**{k: v[idx] for k, v in self.__dict__.items()})
 
 
-def _endpoints_f(
-    o: FloatArray, pts_lo: FloatArray, pts_hi: FloatArray, b: FloatArray, n: FloatArray, tiny: float
+def _end_values(
+    f_lo: FloatArray, f_hi: FloatArray, el: IntArray, own: IntArray, C: Candidates, pen: float
+) -> tuple[FloatArray, BoolArray]:
+    """Value of an edge's best end, and whether it is the low end. An end at a reflex
+    vertex belongs to the vertex; an end at the joint with the sample's own element is
+    the sample's own curve (a gap there is no partner)."""
+    f_lo = np.where(C.reflex_end[el, 0] | (C.touch[el, 0] == own), np.inf, f_lo)
+    f_hi = np.where(C.reflex_end[el, 1] | (C.touch[el, 1] == own), np.inf, f_hi)
+    return np.minimum(f_lo, f_hi) * (1 + 1e-12) + pen, f_lo <= f_hi
+
+
+def _lines_pairs(
+    C: Candidates, b: FloatArray, n: FloatArray, own: IntArray, j: IntArray, tiny: float, pen: float
 ) -> tuple[FloatArray, FloatArray]:
-    f_lo = _f_values(pts_lo[None, :, :], b[:, None, :], n[:, None, :], tiny)
-    f_hi = _f_values(pts_hi[None, :, :], b[:, None, :], n[:, None, :], tiny)
-    return f_lo, f_hi
-
-
-def _lines_block(
-    C: Candidates, b: FloatArray, n: FloatArray, own: IntArray, tiny: float, pen: float
-) -> _Best:
-    """Closed form: the disk tangent at ``b`` growing until it touches each line segment."""
-    o, d, nu = C.line_o[None], C.line_d[None], C.line_nu[None]
-    rel = b[:, None, :] - o
-    h = np.einsum("mek,mek->me", rel, np.broadcast_to(nu, rel.shape))
-    nn = n @ C.line_nu.T
+    """Closed form per (sample, line ``j``) pair: the disk tangent at ``b`` growing until
+    it touches the line segment. Returns value and parameter."""
+    o, d, nu = C.line_o[j], C.line_d[j], C.line_nu[j]
+    h = _dot(b - o, nu)
+    nn = _dot(n, nu)
     sig = np.sign(h)
     den = 1.0 - sig * nn
     with np.errstate(divide="ignore", invalid="ignore"):
         # b on the line itself (a neighbouring edge's vertex) is no tangency
         rho = np.where((den > 1e-14) & (sig * h > 10.0 * tiny), sig * h / den, np.inf)
-    c = b[:, None, :] + np.where(np.isfinite(rho), rho, 0.0)[..., None] * n[:, None, :]
-    tf = np.einsum("mek,mek->me", c - o, np.broadcast_to(d, c.shape))
-    inside = np.isfinite(rho) & (tf >= C.line_lo) & (tf <= C.line_hi)
-    p_lo = C.line_o + C.line_lo[:, None] * C.line_d
-    p_hi = C.line_o + C.line_hi[:, None] * C.line_d
-    f_lo, f_hi = _endpoints_f(o, p_lo, p_hi, b, n, tiny)
-    # an end at a reflex vertex belongs to the vertex; an end at the joint with the
-    # sample's own element is the sample's own curve (a gap there is no partner)
-    f_lo = np.where(C.reflex_end[C.lines, 0] | (C.touch[C.lines, 0] == own[:, None]), np.inf, f_lo)
-    f_hi = np.where(C.reflex_end[C.lines, 1] | (C.touch[C.lines, 1] == own[:, None]), np.inf, f_hi)
-    end_val = np.minimum(f_lo, f_hi) * (1 + 1e-12) + pen
-    end_par = np.where(f_lo <= f_hi, C.line_lo, C.line_hi)
+    c = b + np.where(np.isfinite(rho), rho, 0.0)[:, None] * n
+    tf = _dot(c - o, d)
+    lo, hi = C.line_lo[j], C.line_hi[j]
+    inside = np.isfinite(rho) & (tf >= lo) & (tf <= hi)
+    el = C.lines[j]
+    f_lo = _f_values(o + lo[:, None] * d, b, n, tiny)
+    f_hi = _f_values(o + hi[:, None] * d, b, n, tiny)
+    end_val, low = _end_values(f_lo, f_hi, el, own, C, pen)
     val = np.where(inside, rho, end_val)
-    par = np.where(inside, tf, end_par)
-    val = np.where(own[:, None] == C.lines[None, :], np.inf, val)
-    return _pick(val, par, C.lines)
+    par = np.where(inside, tf, np.where(low, lo, hi))
+    return np.where(own == el, np.inf, val), par
 
 
-def _circles_block(
-    C: Candidates, b: FloatArray, n: FloatArray, own: IntArray, tiny: float, pen: float
-) -> _Best:
-    """Closed form: the disk tangent at ``b`` touching each circular arc."""
-    w = b[:, None, :] - C.circ_c[None]
-    ww = np.einsum("mek,mek->me", w, w)
-    wn = np.einsum("mek,mk->me", w, n)
-    r = C.circ_r[None, :]
+def _circles_pairs(
+    C: Candidates, b: FloatArray, n: FloatArray, own: IntArray, j: IntArray, tiny: float, pen: float
+) -> tuple[FloatArray, FloatArray]:
+    """Closed form per (sample, arc ``j``) pair: the disk tangent at ``b`` touching the
+    circular arc. Returns value and parameter."""
+    cc, r, xa, ya = C.circ_c[j], C.circ_r[j], C.circ_x[j], C.circ_y[j]
+    w = b - cc
+    ww = _dot(w, w)
+    wn = _dot(w, n)
     inner = ww < r * r
     with np.errstate(divide="ignore", invalid="ignore"):
         rho = np.where(inner, (r * r - ww) / (2 * (wn + r)), (ww - r * r) / (2 * (r - wn)))
     on = np.abs(np.sqrt(ww) - r) <= 10.0 * tiny  # b on the same circle (another arc of it)
     rho = np.where(on, np.where(wn < 0, r, np.inf), rho)
     rho = np.where(np.isfinite(rho) & (rho > 0), rho, np.inf)
-    c = b[:, None, :] + np.where(np.isfinite(rho), rho, 0.0)[..., None] * n[:, None, :]
-    v = c - C.circ_c[None]
-    alpha = np.arctan2(np.einsum("mek,ek->me", v, C.circ_y), np.einsum("mek,ek->me", v, C.circ_x))
-    a = C.circ_lo + np.mod(alpha - C.circ_lo, 2 * np.pi)
-    inside = np.isfinite(rho) & (a <= C.circ_hi)
-    ang_lo, ang_hi = C.circ_lo[:, None], C.circ_hi[:, None]
-    p_lo = C.circ_c + C.circ_r[:, None] * (np.cos(ang_lo) * C.circ_x + np.sin(ang_lo) * C.circ_y)
-    p_hi = C.circ_c + C.circ_r[:, None] * (np.cos(ang_hi) * C.circ_x + np.sin(ang_hi) * C.circ_y)
-    f_lo, f_hi = _endpoints_f(C.circ_c, p_lo, p_hi, b, n, tiny)
-    f_lo = np.where(
-        C.reflex_end[C.circles, 0] | (C.touch[C.circles, 0] == own[:, None]), np.inf, f_lo
+    c = b + np.where(np.isfinite(rho), rho, 0.0)[:, None] * n
+    v = c - cc
+    lo, hi = C.circ_lo[j], C.circ_hi[j]
+    alpha = np.arctan2(_dot(v, ya), _dot(v, xa))
+    a = lo + np.mod(alpha - lo, 2 * np.pi)
+    inside = np.isfinite(rho) & (a <= hi)
+    p_lo = cc + r[:, None] * (np.cos(lo)[:, None] * xa + np.sin(lo)[:, None] * ya)
+    p_hi = cc + r[:, None] * (np.cos(hi)[:, None] * xa + np.sin(hi)[:, None] * ya)
+    el = C.circles[j]
+    end_val, low = _end_values(
+        _f_values(p_lo, b, n, tiny), _f_values(p_hi, b, n, tiny), el, own, C, pen
     )
-    f_hi = np.where(
-        C.reflex_end[C.circles, 1] | (C.touch[C.circles, 1] == own[:, None]), np.inf, f_hi
-    )
-    end_val = np.minimum(f_lo, f_hi) * (1 + 1e-12) + pen
-    end_par = np.where(f_lo <= f_hi, C.circ_lo, C.circ_hi)
     val = np.where(inside, rho, end_val)
-    par = np.where(inside, a, end_par)
-    val = np.where(own[:, None] == C.circles[None, :], np.inf, val)
-    return _pick(val, par, C.circles)
+    par = np.where(inside, a, np.where(low, lo, hi))
+    return np.where(own == el, np.inf, val), par
 
 
-def _vertices_block(C: Candidates, b: FloatArray, n: FloatArray, tiny: float) -> _Best:
-    f = _f_values(C.vert_p[None, :, :], b[:, None, :], n[:, None, :], tiny)
-    return _pick(f, np.zeros_like(f), C.vertices)
+def _candidate_f(C: Candidates, g: int, b: FloatArray, n: FloatArray, tiny: float) -> FloatArray:
+    """``f`` at the candidate points of general element ``g`` for each sample, ``(m, K)``."""
+    q = C.points[C.starts[g] : C.stops[g]]
+    return _f_values(q[None, :, :], b[:, None, :], n[:, None, :], tiny)
 
 
-def _general_block(
+def _row_chunks(rows: IntArray, width: int) -> list[IntArray]:
+    step = max(1, _CHUNK_CELLS // max(width, 1))
+    return [rows[i : i + step] for i in range(0, len(rows), step)]
+
+
+def _general_pairs(
     boundary: Boundary,
     C: Candidates,
-    b: FloatArray,
-    n: FloatArray,
-    own: IntArray,
-    own_param: FloatArray,
-    self_bound: FloatArray,
-    near: FloatArray,
+    R: _Rows,
+    rows: IntArray,
+    g: IntArray,
     tiny: float,
     pen: float,
 ) -> _Best:
-    """Free-form curves: dense candidates, then safeguarded Newton per candidate element."""
-    m = len(b)
-    if len(C.general) == 0:
-        return np.full(m, np.inf), np.full(m, -1, dtype=np.int64), np.zeros(m)
-    f = _f_values(C.points[None, :, :], b[:, None, :], n[:, None, :], tiny)
-    fe = np.minimum.reduceat(f, C.starts, axis=1)
-    rmin = np.minimum(fe.min(axis=1), self_bound)
-    keep = (fe <= rmin[:, None] * 1.25 + 1e-9 * boundary.diag) & np.isfinite(fe)
+    """Free-form curves, per (sample, general element ``g``) pair: dense candidates, then
+    safeguarded Newton per candidate element. Returns the best per sample."""
+    m = len(R.b)
     best = np.full(m, np.inf)
     best_e = np.full(m, -1, dtype=np.int64)
     best_p = np.zeros(m)
-    for g in np.nonzero(keep.any(axis=0))[0]:
-        rr = np.nonzero(keep[:, g])[0]
-        ei = int(C.general[g])
-        e = boundary.elements[ei]
-        assert e.piece is not None
-        first, last = int(C.starts[g]), int(C.stops[g]) - 1
+    if len(rows) == 0:
+        return best, best_e, best_p
+    order = np.lexsort((rows, g))
+    rows, g = rows[order], g[order]
+    cut = np.flatnonzero(np.diff(g)) + 1
+    groups = list(zip(np.split(rows, cut), g[np.concatenate([[0], cut])], strict=True))
+    # discrete minimum per pair and per sample over all its general elements, and the
+    # discrete local minima of every pair (row, candidate, value)
+    fe = np.empty(len(rows))
+    minima: list[tuple[IntArray, IntArray, FloatArray]] = []
+    k = 0
+    for rr, gi in groups:
+        width = int(C.stops[gi] - C.starts[gi])
+        found = []
+        for part in _row_chunks(rr, width):
+            fg = _candidate_f(C, int(gi), R.b[part], R.n[part], tiny)
+            fe[k : k + len(part)] = fg.min(axis=1)
+            found.append(_local_minima(C, int(gi), part, fg, tiny))
+            k += len(part)
+        minima.append(
+            (
+                np.concatenate([x[0] for x in found]),
+                np.concatenate([x[1] for x in found]),
+                np.concatenate([x[2] for x in found]),
+            )
+        )
+    rmin = R.self_bound.copy()
+    np.minimum.at(rmin, rows, fe)
+    keep = (fe <= rmin[rows] * 1.25 + 1e-9 * boundary.diag) & np.isfinite(fe)
+    thr = rmin * 1.25 + 1e-9 * boundary.diag
+    kept = np.zeros(m, dtype=bool)
+    k = 0
+    for (rr, gi), (lr, lj, lf) in zip(groups, minima, strict=True):
+        kept[:] = False
+        kept[rr[keep[k : k + len(rr)]]] = True
+        k += len(rr)
         # every discrete local minimum near the best: one curve can hold several partners
         # whose values differ by less than the sampling error (at a branch point)
-        fg = f[rr, first : last + 1]
-        closed = np.linalg.norm(C.points[first] - C.points[last]) <= tiny
-        pad = fg[:, -2:-1] if closed else np.full((len(rr), 1), np.inf)
-        left = np.concatenate([pad, fg[:, :-1]], axis=1)
-        pad = fg[:, 1:2] if closed else np.full((len(rr), 1), np.inf)
-        right = np.concatenate([fg[:, 1:], pad], axis=1)
-        thr = rmin[rr] * 1.25 + 1e-9 * boundary.diag
-        lm = (fg <= left) & (fg <= right) & (fg <= thr[:, None]) & np.isfinite(fg)
-        if closed:
-            lm[:, -1] = False  # the seam point is the first candidate too
-        ri, jj = np.nonzero(lm)
-        rr, cj = rr[ri], first + jj
-        lo = C.param[np.maximum(cj - 1, first)]
-        hi = C.param[np.minimum(cj + 1, last)]
-        t0 = C.param[cj]
-        lo2, hi2 = np.minimum(lo, hi), np.maximum(lo, hi)
-        is_own = own[rr] == ei
-        if np.any(is_own):
-            # never let the solve fall onto the trivial root q = b on the own curve: the
-            # partner of a sample that is not near-self lies at least ``near`` away
-            tb = own_param[rr]
-            speed = np.linalg.norm(e.piece.curve.derivs(tb)[1], axis=1)
-            cut = np.minimum(0.5 * near[rr] / np.maximum(speed, 1e-300), 0.5 * np.abs(t0 - tb))
-            inside = is_own & (lo2 < tb + cut) & (tb - cut < hi2)
-            lo2 = np.where(inside & (t0 > tb), np.maximum(lo2, tb + cut), lo2)
-            hi2 = np.where(inside & (t0 < tb), np.minimum(hi2, tb - cut), hi2)
-        t, fv = _refine_on_edge(e, b[rr], n[rr], t0, lo2, hi2)
-        if closed:
-            # a closed edge: a minimum at its seam may lie on the other side of it
-            at_seam = np.nonzero((cj == first) | (cj == last))[0]
-            if len(at_seam):
-                other = np.where(cj[at_seam] == first, last, first)
-                olo = C.param[np.where(other == first, first, last - 1)]
-                ohi = C.param[np.where(other == first, first + 1, last)]
-                t_b, f_b = _refine_on_edge(
-                    e,
-                    b[rr[at_seam]],
-                    n[rr[at_seam]],
-                    C.param[other],
-                    np.minimum(olo, ohi),
-                    np.maximum(olo, ohi),
-                )
-                better = f_b < fv[at_seam]
-                t[at_seam[better]] = t_b[better]
-                fv[at_seam[better]] = f_b[better]
-        f0 = f[rr, cj]
-        worse = ~(fv <= f0)
-        t = np.where(worse, t0, t)
-        fv = np.where(worse, f0, fv)
-        span = abs(e.piece.t1 - e.piece.t0)
-        at_end = (np.abs(t - e.piece.t0) < 1e-12 * span) | (np.abs(t - e.piece.t1) < 1e-12 * span)
-        fv = np.where(at_end, fv * (1 + 1e-12) + pen, fv)
-        lo_t, hi_t = min(e.piece.t0, e.piece.t1), max(e.piece.t0, e.piece.t1)
-        end_lo = C.reflex_end[ei, 0] | (C.touch[ei, 0] == own[rr])
-        end_hi = C.reflex_end[ei, 1] | (C.touch[ei, 1] == own[rr])
-        at_reflex = (end_lo & (np.abs(t - lo_t) < 1e-12 * span)) | (
-            end_hi & (np.abs(t - hi_t) < 1e-12 * span)
-        )
-        fv = np.where(at_reflex, np.inf, fv)
-        if np.any(is_own):
-            fv = np.where(is_own & (np.abs(t - own_param[rr]) < 1e-9 * span), np.inf, fv)
-        order = np.lexsort((fv, rr))
-        head = np.ones(len(order), dtype=bool)
-        head[1:] = rr[order][1:] != rr[order][:-1]
-        win = order[head]
-        better = fv[win] < best[rr[win]]
-        best[rr[win][better]] = fv[win][better]
-        best_e[rr[win][better]] = ei
-        best_p[rr[win][better]] = t[win][better]
+        use = kept[lr] & (lf <= thr[lr])
+        if not np.any(use):
+            continue
+        win, fv, t = _refine_element(boundary, C, int(gi), lr[use], lj[use], lf[use], R, tiny, pen)
+        better = fv < best[win]
+        best[win[better]] = fv[better]
+        best_e[win[better]] = C.general[gi]
+        best_p[win[better]] = t[better]
     return best, best_e, best_p
+
+
+def _local_minima(
+    C: Candidates, g: int, rows: IntArray, fg: FloatArray, tiny: float
+) -> tuple[IntArray, IntArray, FloatArray]:
+    """Discrete local minima of ``f`` along general element ``g`` (``fg``: ``f`` at its
+    candidates for samples ``rows``): row, candidate offset and value, in row order."""
+    first, last = int(C.starts[g]), int(C.stops[g]) - 1
+    closed = np.linalg.norm(C.points[first] - C.points[last]) <= tiny
+    pad = fg[:, -2:-1] if closed else np.full((len(rows), 1), np.inf)
+    left = np.concatenate([pad, fg[:, :-1]], axis=1)
+    pad = fg[:, 1:2] if closed else np.full((len(rows), 1), np.inf)
+    right = np.concatenate([fg[:, 1:], pad], axis=1)
+    lm = (fg <= left) & (fg <= right) & np.isfinite(fg)
+    if closed:
+        lm[:, -1] = False  # the seam point is the first candidate too
+    ri, jj = np.nonzero(lm)
+    return rows[ri], jj.astype(np.int64), fg[ri, jj]
+
+
+def _refine_element(
+    boundary: Boundary,
+    C: Candidates,
+    g: int,
+    rr: IntArray,
+    jj: IntArray,
+    f0: FloatArray,
+    R: _Rows,
+    tiny: float,
+    pen: float,
+) -> tuple[IntArray, FloatArray, FloatArray]:
+    """Newton on general element ``g`` from discrete local minima (sample ``rr``,
+    candidate offset ``jj``, value ``f0``; by sample, then candidate). Returns the best
+    per sample: rows, values, parameters."""
+    b, n, own, own_param, near = R.b, R.n, R.own, R.own_param, R.near
+    ei = int(C.general[g])
+    e = boundary.elements[ei]
+    assert e.piece is not None
+    first, last = int(C.starts[g]), int(C.stops[g]) - 1
+    closed = np.linalg.norm(C.points[first] - C.points[last]) <= tiny
+    cj = first + jj
+    lo = C.param[np.maximum(cj - 1, first)]
+    hi = C.param[np.minimum(cj + 1, last)]
+    t0 = C.param[cj]
+    lo2, hi2 = np.minimum(lo, hi), np.maximum(lo, hi)
+    is_own = own[rr] == ei
+    if np.any(is_own):
+        # never let the solve fall onto the trivial root q = b on the own curve: the
+        # partner of a sample that is not near-self lies at least ``near`` away
+        tb = own_param[rr]
+        speed = np.linalg.norm(e.piece.curve.derivs(tb)[1], axis=1)
+        cut = np.minimum(0.5 * near[rr] / np.maximum(speed, 1e-300), 0.5 * np.abs(t0 - tb))
+        inside = is_own & (lo2 < tb + cut) & (tb - cut < hi2)
+        lo2 = np.where(inside & (t0 > tb), np.maximum(lo2, tb + cut), lo2)
+        hi2 = np.where(inside & (t0 < tb), np.minimum(hi2, tb - cut), hi2)
+    t, fv = _refine_on_edge(e, b[rr], n[rr], t0, lo2, hi2)
+    if closed:
+        # a closed edge: a minimum at its seam may lie on the other side of it
+        at_seam = np.nonzero((cj == first) | (cj == last))[0]
+        if len(at_seam):
+            other = np.where(cj[at_seam] == first, last, first)
+            olo = C.param[np.where(other == first, first, last - 1)]
+            ohi = C.param[np.where(other == first, first + 1, last)]
+            t_b, f_b = _refine_on_edge(
+                e,
+                b[rr[at_seam]],
+                n[rr[at_seam]],
+                C.param[other],
+                np.minimum(olo, ohi),
+                np.maximum(olo, ohi),
+            )
+            better = f_b < fv[at_seam]
+            t[at_seam[better]] = t_b[better]
+            fv[at_seam[better]] = f_b[better]
+    worse = ~(fv <= f0)
+    t = np.where(worse, t0, t)
+    fv = np.where(worse, f0, fv)
+    span = abs(e.piece.t1 - e.piece.t0)
+    at_end = (np.abs(t - e.piece.t0) < 1e-12 * span) | (np.abs(t - e.piece.t1) < 1e-12 * span)
+    fv = np.where(at_end, fv * (1 + 1e-12) + pen, fv)
+    lo_t, hi_t = min(e.piece.t0, e.piece.t1), max(e.piece.t0, e.piece.t1)
+    end_lo = C.reflex_end[ei, 0] | (C.touch[ei, 0] == own[rr])
+    end_hi = C.reflex_end[ei, 1] | (C.touch[ei, 1] == own[rr])
+    at_reflex = (end_lo & (np.abs(t - lo_t) < 1e-12 * span)) | (
+        end_hi & (np.abs(t - hi_t) < 1e-12 * span)
+    )
+    fv = np.where(at_reflex, np.inf, fv)
+    if np.any(is_own):
+        fv = np.where(is_own & (np.abs(t - own_param[rr]) < 1e-9 * span), np.inf, fv)
+    order = np.lexsort((fv, rr))
+    head = np.ones(len(order), dtype=bool)
+    head[1:] = rr[order][1:] != rr[order][:-1]
+    win = order[head]
+    return rr[win], fv[win], t[win]
+
+
+def _solve_pairs(
+    boundary: Boundary, C: Candidates, R: _Rows, rows: IntArray, els: IntArray, tiny: float
+) -> _Best:
+    """The minimum of ``f`` per sample over the given (sample, element) pairs: value,
+    element and parameter (ties go to lines, then arcs, vertices, general curves, and
+    within a kind to the lower element index)."""
+    m = len(R.b)
+    pen = 1e-14 * boundary.diag  # a minimum at a segment's end loses ties
+    kind, pos = C.kind[els], C.pos[els]
+    parts: list[tuple[IntArray, FloatArray, FloatArray, IntArray, IntArray]] = []
+    for k, fn in ((LINE, _lines_pairs), (CIRCLE, _circles_pairs)):
+        sel = np.nonzero(kind == k)[0]
+        if len(sel):
+            r = rows[sel]
+            v, p = fn(C, R.b[r], R.n[r], R.own[r], pos[sel], tiny, pen)
+            parts.append((r, v, p, np.full(len(r), k), els[sel]))
+    sel = np.nonzero(kind == VERTEX)[0]
+    if len(sel):
+        r = rows[sel]
+        v = _f_values(C.vert_p[pos[sel]], R.b[r], R.n[r], tiny)
+        parts.append((r, v, np.zeros(len(r)), np.full(len(r), VERTEX), els[sel]))
+    sel = np.nonzero(kind == GENERAL)[0]
+    gv, ge, gp = _general_pairs(boundary, C, R, rows[sel], pos[sel], tiny, pen)
+    has = np.nonzero(np.isfinite(gv))[0]
+    parts.append((has, gv[has], gp[has], np.full(len(has), GENERAL), ge[has]))
+    r = np.concatenate([x[0] for x in parts])
+    v = np.concatenate([x[1] for x in parts])
+    p = np.concatenate([x[2] for x in parts])
+    blk = np.concatenate([x[3] for x in parts])
+    el = np.concatenate([x[4] for x in parts])
+    best = np.full(m, np.inf)
+    best_e = np.full(m, -1, dtype=np.int64)
+    best_p = np.zeros(m)
+    np.minimum.at(best, r, v)
+    # among a sample's minima, the lowest (kind, element)
+    tie = np.nonzero((v == best[r]) & np.isfinite(v))[0]
+    rank = blk[tie] * (len(C.kind) + 1) + el[tie]
+    first = np.full(m, np.iinfo(np.int64).max)
+    np.minimum.at(first, r[tie], rank)
+    win = tie[rank == first[r[tie]]]
+    best_e[r[win]], best_p[r[win]] = el[win], p[win]
+    return best, best_e, best_p
+
+
+def _near_elements(
+    C: Candidates, centre: FloatArray, radius: FloatArray
+) -> tuple[IntArray, IntArray]:
+    """Pairs ``(row, element)`` whose element's bounding circle meets the disk
+    ``(centre[row], radius[row])``, sorted by row then element. The nearest few centres
+    of each size class come from one vectorized k-NN query; the rare rows with more in
+    reach are completed by a ball query."""
+    rows, els = [], []
+    m = len(centre)
+    for tree, ids, reach in C.trees:
+        k = min(_KNN, tree.n)
+        d, j = tree.query(centre, k=k)
+        d, j = d.reshape(m, k), j.reshape(m, k)
+        within = d <= (radius + reach)[:, None]
+        more = within[:, -1] if k < tree.n else np.zeros(m, dtype=bool)
+        r, c = np.nonzero(within & ~more[:, None])
+        rows.append(r)
+        els.append(ids[j[r, c]])
+        full = np.nonzero(more)[0]
+        if len(full):
+            hits = tree.query_ball_point(centre[full], (radius + reach)[full])
+            count = np.fromiter(map(len, hits), dtype=np.int64, count=len(hits))
+            flat = np.fromiter(itertools.chain.from_iterable(hits), np.int64, int(count.sum()))
+            rows.append(np.repeat(full, count))
+            els.append(ids[flat])
+    r, j = np.concatenate(rows), np.concatenate(els)
+    ok = np.linalg.norm(centre[r] - C.bound_c[j], axis=1) <= radius[r] + C.bound_h[j]
+    r, j = r[ok], j[ok]
+    order = np.lexsort((j, r))
+    return r[order], j[order]
+
+
+def _shrinking_ball(C: Candidates, b: FloatArray, n: FloatArray, r: FloatArray) -> FloatArray:
+    """An estimate of the maximal disk's radius from the boundary's point cloud: shrink
+    the tangent disk at ``b`` onto the nearest cloud point inside it until none is."""
+    r = r.copy()
+    pts = C.cloud.data
+    tiny = 1e-12 * C.diag
+    active = np.arange(len(b))
+    for _ in range(100):
+        if len(active) == 0:
+            break
+        c = b[active] + r[active, None] * n[active]
+        dist, j = C.cloud.query(c)
+        fq = _f_values(pts[j], b[active], n[active], tiny)
+        shrink = (dist < r[active] * (1 - 1e-9)) & (fq < r[active])
+        r[active[shrink]] = fq[shrink]
+        active = active[shrink]
+    return r
+
+
+def _global_min(boundary: Boundary, C: Candidates, R: _Rows) -> _Best:
+    """The minimum of ``f`` over the whole boundary per sample (module docstring). A
+    sample is settled once its minimum is at most ``R`` (every element that can hold a
+    value ``<= R`` was solved) or ``R`` reaches the osculating radius (the disk is the
+    osculating one: no partner)."""
+    m = len(R.b)
+    tiny = 1e-12 * boundary.diag
+    diag = boundary.diag
+    best = np.full(m, np.inf)
+    best_e = np.full(m, -1, dtype=np.int64)
+    best_p = np.zeros(m)
+    # an upper bound from the neighbouring elements (next to a convex corner the partner
+    # is the next edge, far closer than the point cloud resolves), then the cloud's
+    # (closed forms only: a general curve's solve costs as much as the main one)
+    rows = np.repeat(np.arange(m), 4)
+    ring = C.ring[R.own].ravel()
+    cheap = C.kind[ring] != GENERAL
+    local = _solve_pairs(boundary, C, R, rows[cheap], ring[cheap], tiny)[0]
+    start = np.minimum(np.minimum(R.self_bound, local), 0.5 * diag) * (1 + 1e-3)
+    reach = _shrinking_ball(C, R.b, R.n, start) * (1 + 1e-3) + 1e-8 * diag
+    active = np.arange(m)
+    while len(active):
+        sub = R.take(active)
+        ra = reach[active]
+        full = ra > 4.0 * diag  # no element ahead of b at all: solve against everything
+        rows, els = _near_elements(C, sub.b + ra[:, None] * sub.n, ra)
+        if np.any(full):
+            fr = np.nonzero(full)[0]
+            keep = ~full[rows]
+            n_el = len(C.kind)
+            rows = np.concatenate([rows[keep], np.repeat(fr, n_el)])
+            els = np.concatenate([els[keep], np.tile(np.arange(n_el), len(fr))])
+        v, e, p = _solve_pairs(boundary, C, sub, rows, els, tiny)
+        done = (v <= ra) | (ra >= sub.self_bound) | full
+        idx = active[done]
+        best[idx], best_e[idx], best_p[idx] = v[done], e[done], p[done]
+        active = active[~done]
+        reach[active] *= 2.0
+    return best, best_e, best_p
+
+
+def _frames(
+    boundary: Boundary, C: Candidates, elem: IntArray, s: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Parameter, boundary point, inward normal and signed curvature at loop coordinate
+    ``s`` on element ``elem`` (vectorized over lines, arcs and vertices)."""
+    m = len(s)
+    a, bb = C.el_a[elem], C.el_b[elem]
+    param = a + (s - C.el_s0[elem]) / C.el_len[elem] * (bb - a)
+    foot = np.empty((m, 2))
+    normal = np.empty((m, 2))
+    curv = np.empty(m)
+    kind, pos = C.kind[elem], C.pos[elem]
+    sense = np.where(bb > a, 1.0, -1.0)
+    sel = np.nonzero(kind == LINE)[0]
+    if len(sel):
+        o, d, t = C.line_o[pos[sel]], C.line_d[pos[sel]], param[sel]
+        foot[sel] = o + t[:, None] * d
+        tan = sense[sel, None] * d / np.linalg.norm(d, axis=1)[:, None]
+        normal[sel] = np.column_stack([-tan[:, 1], tan[:, 0]])
+        curv[sel] = 0.0
+    sel = np.nonzero(kind == CIRCLE)[0]
+    if len(sel):
+        j, t = pos[sel], param[sel][:, None]
+        r, xa, ya = C.circ_r[j][:, None], C.circ_x[j], C.circ_y[j]
+        c, si = np.cos(t), np.sin(t)
+        foot[sel] = C.circ_c[j] + r * (c * xa + si * ya)
+        d1 = r * (-si * xa + c * ya)
+        d2 = -r * (c * xa + si * ya)
+        speed = np.linalg.norm(d1, axis=1)
+        tan = sense[sel, None] * d1 / speed[:, None]
+        normal[sel] = np.column_stack([-tan[:, 1], tan[:, 0]])
+        curv[sel] = sense[sel] * (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / speed**3
+    sel = np.nonzero(kind == VERTEX)[0]
+    if len(sel):
+        foot[sel] = C.vert_p[pos[sel]]
+        normal[sel] = np.column_stack([np.cos(param[sel]), np.sin(param[sel])])
+        curv[sel] = -np.inf  # reflex: never a curvature bound
+    gen = kind == GENERAL
+    for ei in np.unique(elem[gen]):
+        sel = np.nonzero(elem == ei)[0]
+        foot[sel], normal[sel], curv[sel] = boundary.frame_at(boundary.elements[ei], param[sel])
+    return param, foot, normal, curv
+
+
+def _partner_points(
+    boundary: Boundary, C: Candidates, p_elem: IntArray, p_param: FloatArray, centre: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Partner parameter (a vertex's: the normal angle towards the centre), point and
+    loop coordinate."""
+    p_param = p_param.copy()
+    point = np.empty((len(p_elem), 2))
+    kind, pos = C.kind[p_elem], C.pos[p_elem]
+    sel = np.nonzero(kind == VERTEX)[0]
+    if len(sel):
+        v = C.vert_p[pos[sel]]
+        c = centre[sel] - v
+        th = np.arctan2(c[:, 1], c[:, 0])
+        a, bb = C.el_a[p_elem[sel]], C.el_b[p_elem[sel]]
+        rel = np.mod(th - a + np.pi, 2 * np.pi) - np.pi
+        p_param[sel] = a + np.clip(rel, bb - a, 0.0)
+        point[sel] = v
+    sel = np.nonzero(kind == LINE)[0]
+    if len(sel):
+        j = pos[sel]
+        point[sel] = C.line_o[j] + p_param[sel][:, None] * C.line_d[j]
+    sel = np.nonzero(kind == CIRCLE)[0]
+    if len(sel):
+        j, t = pos[sel], p_param[sel][:, None]
+        point[sel] = C.circ_c[j] + C.circ_r[j][:, None] * (
+            np.cos(t) * C.circ_x[j] + np.sin(t) * C.circ_y[j]
+        )
+    gen = kind == GENERAL
+    for ei in np.unique(p_elem[gen]):
+        sel = np.nonzero(p_elem == ei)[0]
+        piece = boundary.elements[ei].piece
+        assert piece is not None
+        point[sel] = piece.curve.point(p_param[sel])
+    a, bb = C.el_a[p_elem], C.el_b[p_elem]
+    f = (p_param - a) / (bb - a)
+    p_s = C.el_s0[p_elem] + np.clip(f, 0.0, 1.0) * C.el_len[p_elem]
+    return p_param, point, p_s
+
+
+def _rows_at(
+    boundary: Boundary, cands: Candidates, loop: IntArray, s: FloatArray, tol: float
+) -> _Rows:
+    """Boundary point, normal and curvature bounds at ``(loop, s)``."""
+    n_el = len(boundary.elements)
+    key = cands.loop_offset[loop] + s
+    elem = np.clip(np.searchsorted(cands.elem_key, key, side="right") - 1, 0, n_el - 1)
+    param, foot, normal, curv = _frames(boundary, cands, elem, s)
+    # the osculating disk bounds rho* (limit of f on the own curve)
+    with np.errstate(divide="ignore"):
+        self_bound = np.where(curv > 0, 1.0 / np.where(curv > 0, curv, 1.0), np.inf)
+    near = 0.5 * np.sqrt(tol * np.where(np.isfinite(self_bound), self_bound, 0.0))
+    return _Rows(foot, normal, elem, param, self_bound, near)
 
 
 def evaluate(
@@ -476,72 +910,19 @@ def evaluate(
     """
     loop = np.asarray(loop, dtype=np.int64)
     s = np.asarray(s, dtype=float)
-    m = len(s)
-    elements = boundary.elements
-    key = cands.loop_offset[loop] + s
-    elem = np.clip(np.searchsorted(cands.elem_key, key, side="right") - 1, 0, len(elements) - 1)
-    param = np.empty(m)
-    foot = np.empty((m, 2))
-    normal = np.empty((m, 2))
-    curv = np.empty(m)
-    for ei in np.unique(elem):
-        sel = np.nonzero(elem == ei)[0]
-        e = elements[ei]
-        param[sel] = boundary.param_of(e, s[sel])
-        foot[sel], normal[sel], curv[sel] = boundary.frame_at(e, param[sel])
-
-    tiny = 1e-12 * boundary.diag
-    pen = 1e-14 * boundary.diag  # a minimum at a segment's end loses ties
-    # the osculating disk bounds rho* (limit of f on the own curve)
-    with np.errstate(divide="ignore"):
-        self_bound = np.where(curv > 0, 1.0 / np.where(curv > 0, curv, 1.0), np.inf)
-    near = 0.5 * np.sqrt(tol * np.where(np.isfinite(self_bound), self_bound, 0.0))
-    best = np.full(m, np.inf)
-    best_elem = np.full(m, -1, dtype=np.int64)
-    best_param = np.zeros(m)
-    width = len(cands.lines) + len(cands.circles) + len(cands.vertices) + len(cands.points)
-    chunk = max(1, _CHUNK_CELLS // max(width, 1))
-    for c0 in range(0, m, chunk):
-        sl = slice(c0, min(m, c0 + chunk))
-        b, n, own = foot[sl], normal[sl], elem[sl]
-        blocks = [
-            _lines_block(cands, b, n, own, tiny, pen),
-            _circles_block(cands, b, n, own, tiny, pen),
-            _vertices_block(cands, b, n, tiny),
-            _general_block(
-                boundary, cands, b, n, own, param[sl], self_bound[sl], near[sl], tiny, pen
-            ),
-        ]
-        vals = np.stack([blk[0] for blk in blocks])
-        j = np.argmin(vals, axis=0)
-        r = np.arange(vals.shape[1])
-        best[sl] = vals[j, r]
-        best_elem[sl] = np.stack([blk[1] for blk in blocks])[j, r]
-        best_param[sl] = np.stack([blk[2] for blk in blocks])[j, r]
+    rows = _rows_at(boundary, cands, loop, s, tol)
+    foot, normal, elem, param = rows.b, rows.n, rows.own, rows.own_param
+    self_bound, near = rows.self_bound, rows.near
+    best, best_elem, best_param = _global_min(boundary, cands, rows)
 
     is_self = ~(best < self_bound - 0.05 * tol)
     radius = np.where(is_self, self_bound, best)
     centre = foot + radius[:, None] * normal
     p_elem = np.where(is_self, elem, best_elem)
-    p_param = np.where(is_self, param, best_param)
-    p_point = np.empty((m, 2))
-    p_loop = np.empty(m, dtype=np.int64)
-    p_s = np.empty(m)
-    for ei in np.unique(p_elem):
-        sel = np.nonzero(p_elem == ei)[0]
-        e = elements[ei]
-        p_loop[sel] = e.loop
-        if e.piece is None:
-            assert e.vertex is not None
-            c = centre[sel] - e.vertex
-            th = np.arctan2(c[:, 1], c[:, 0])
-            rel = np.mod(th - e.theta0 + np.pi, 2 * np.pi) - np.pi
-            rel = np.clip(rel, e.theta1 - e.theta0, 0.0)
-            p_param[sel] = e.theta0 + rel
-            p_point[sel] = e.vertex
-        else:
-            p_point[sel] = e.piece.curve.point(p_param[sel])
-        p_s[sel] = boundary.s_of(e, p_param[sel])
+    p_param, p_point, p_s = _partner_points(
+        boundary, cands, p_elem, np.where(is_self, param, best_param), centre
+    )
+    p_loop = cands.el_loop[p_elem]
     loop_len = np.asarray(boundary.loop_lengths)[loop]
     gap_s = np.abs(p_s - s)
     gap_s = np.minimum(gap_s, loop_len - gap_s)  # across the seam of a closed curve

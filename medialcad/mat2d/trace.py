@@ -128,6 +128,7 @@ class _Tracer:
         self.sp_cache: dict[
             tuple[int, float, float], tuple[FloatArray, float, FloatArray, int, float]
         ] = {}
+        self.splines: dict[bytes, Spline] = {}
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
         els = boundary.elements
@@ -140,6 +141,14 @@ class _Tracer:
         self.convex = [
             (c.loop, c.s % self.L[c.loop], c.point) for c in boundary.corners if c.turn > 0
         ]
+
+    def fit(self, values: FloatArray) -> Spline:
+        """:func:`fit_spline` through ``values``, remembered (the fit check and the
+        assembly fit the same branches)."""
+        key = np.ascontiguousarray(values).tobytes()
+        if key not in self.splines:
+            self.splines[key] = fit_spline(values)
+        return self.splines[key]
 
     # -- sampling ------------------------------------------------------------------
     def eval(self, loop: IntArray, s: FloatArray) -> MapSamples:
@@ -175,15 +184,15 @@ class _Tracer:
         return np.asarray(same & ((d == 1) | (d == count[loop[a]] - 1)))
 
     def eval_cached(
-        self, loop: int, s: FloatArray
+        self, loop: IntArray, s: FloatArray
     ) -> tuple[FloatArray, FloatArray, NDArray[np.bool_]]:
-        """Centre, radius and self flag at ``s`` on ``loop``, remembering past answers
+        """Centre, radius and self flag at ``(loop, s)``, remembering past answers
         (the fit check asks for the same midpoints again after a refit)."""
         cache = self.mid_cache
-        keys = [(loop, float(x)) for x in s]
+        keys = [(int(lp), float(x)) for lp, x in zip(loop, s, strict=True)]
         todo = [i for i, k in enumerate(keys) if k not in cache]
         if todo:
-            M = self.eval(np.full(len(todo), loop), s[todo])
+            M = self.eval(loop[todo], s[todo])
             cen = M.centre
             for j, i in enumerate(todo):
                 cache[keys[i]] = (cen[j], float(M.radius[j]), bool(M.is_self[j]))
@@ -270,10 +279,10 @@ class _Tracer:
                 self._loop_events(S, idx, lp, events, new_loop, new_s)
             if not new_s:
                 return S, events, True
-            if len(S) + len(new_s) > cfg.max_samples:
-                raise ComputationError(
-                    f"the medial axis needs more than {cfg.max_samples} boundary samples"
-                )
+            # the budget grows with the boundary: every element has its own samples
+            limit = max(cfg.max_samples, 400 * len(self.b.elements))
+            if len(S) + len(new_s) > limit:
+                raise ComputationError(f"the medial axis needs more than {limit} boundary samples")
             S = MapSamples.concat([S, self.eval(np.array(new_loop), np.array(new_s))])
         return S, events, False
 
@@ -305,15 +314,16 @@ class _Tracer:
                 events.append(_Event(lp, sv, sv, NodeKind.CONVEX_VERTEX, pt, 0.0, [(-1, 0.0, pt)]))
         # runs of self samples: one curvature-centre event each
         n = len(idx)
-        start_run = [j for j in range(n) if self_[idx[j]] and not self_[idx[(j - 1) % n]]]
-        if n and all(self_[idx]):
+        run = self_[idx]
+        start_run = [int(j) for j in np.nonzero(run & ~np.roll(run, 1))[0]]
+        if n and run.all():
             start_run = [0]
         for j0 in start_run:
             j1 = j0
             while self_[idx[(j1 + 1) % n]] and (j1 + 1) % n != j0:
                 j1 += 1
             lo_s, hi_s = S.s[idx[j0]], S.s[idx[j1 % n]]
-            if all(self_[idx]):
+            if run.all():
                 lo_s, hi_s = 0.0, length
             c, r, p, ei, t = self._sp_node(lp, lo_s, hi_s)
             events.append(_Event(lp, lo_s, hi_s, NodeKind.CURVATURE_CENTRE, c, r, [(ei, t, p)]))
@@ -378,8 +388,10 @@ def _merge_nodes(events: list[_Event], radius: float) -> int:
     for i, e in enumerate(events):
         e.node = roots.setdefault(find(i), len(roots))
     # every event of a node carries the node's point and radius (branches end exactly there)
-    for k in range(len(roots)):
-        group = [e for e in events if e.node == k]
+    groups: dict[int, list[_Event]] = {}
+    for e in events:
+        groups.setdefault(e.node, []).append(e)
+    for group in groups.values():
         if len(group) > 1:
             corner = [e for e in group if e.kind is NodeKind.CONVEX_VERTEX]
             pt = corner[0].point if corner else np.mean([e.point for e in group], axis=0)
@@ -477,15 +489,10 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
             twin = _twins(S, intervals, tables, tr.L)
         n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
         kept = [_thin(S, iv, 1e-2 * tol) for iv in _dedupe(intervals, twin)]
-        add_loop: list[int] = []
-        add_s: list[float] = []
-        for iv in kept:
-            need = _missing_fit(tr, S, iv, tol)
-            add_loop += [iv.loop] * len(need)
-            add_s += need
-        if not add_s:
-            return _assemble(boundary, frame, tol, S, events, n_nodes, kept)
-        S = MapSamples.concat([S, tr.eval(np.array(add_loop), np.array(add_s))])
+        added = _missing_fit(tr, S, kept, tol)
+        if not added:
+            return _assemble(tr, frame, tol, S, events, n_nodes, kept)
+        S = MapSamples.concat([S, *added])
     raise ComputationError("the medial axis did not reach the tolerance")
 
 
@@ -511,10 +518,14 @@ def _unresolved_corners(intervals: list[_Interval], twin: IntArray) -> list[_Eve
     """Convex corners whose two sides map into one partner interval: the corner is so
     flat that its spoke's branch point is below the tolerance; it is a smooth join."""
     out = []
+    starting: dict[int, int] = {}
+    for k, other in enumerate(intervals):
+        if other.start is not None:
+            starting.setdefault(id(other.start), k)
     for i, iv in enumerate(intervals):
         if iv.end is None or iv.end.kind is not NodeKind.CONVEX_VERTEX:
             continue
-        j = next((k for k, other in enumerate(intervals) if other.start is iv.end), -1)
+        j = starting.get(id(iv.end), -1)
         if j >= 0 and twin[i] >= 0 and twin[i] == twin[j]:
             out.append(iv.end)
     return out
@@ -522,12 +533,16 @@ def _unresolved_corners(intervals: list[_Interval], twin: IntArray) -> list[_Eve
 
 def _dedupe(intervals: list[_Interval], twin: IntArray) -> list[_Interval]:
     """Keep one of the two sides of every branch (the interval with the lower index)."""
+    by_nodes: dict[tuple[int, int], list[int]] = {}
+    for k, other in enumerate(intervals):
+        if other.start is not None and other.end is not None:
+            by_nodes.setdefault((other.start.node, other.end.node), []).append(k)
     kept: list[_Interval] = []
     for i, iv in enumerate(intervals):
         if len(iv.samples) == 0:
             # no sample between two distinct nodes: only the lower side keeps it
             distinct = iv.start is not None and iv.end is not None and iv.start.node != iv.end.node
-            if distinct and _lower_side(iv, intervals):
+            if distinct and _lower_side(i, intervals, by_nodes):
                 kept.append(iv)
             continue
         j = twin[i]
@@ -536,14 +551,17 @@ def _dedupe(intervals: list[_Interval], twin: IntArray) -> list[_Interval]:
     return kept
 
 
-def _lower_side(iv: _Interval, intervals: list[_Interval]) -> bool:
+def _lower_side(
+    i: int, intervals: list[_Interval], by_nodes: dict[tuple[int, int], list[int]]
+) -> bool:
+    """Whether the empty interval ``i`` is the side of its branch that is kept: no
+    interval runs back between its nodes, or only an empty one of higher index does."""
+    iv = intervals[i]
     assert iv.start is not None and iv.end is not None
-    for other in intervals:
-        if other is iv or other.start is None or other.end is None:
-            continue
-        if other.start.node == iv.end.node and other.end.node == iv.start.node:
-            return id(iv) < id(other) if len(other.samples) == 0 else False
-    return True
+    back = [k for k in by_nodes.get((iv.end.node, iv.start.node), []) if k != i]
+    if not back:
+        return True
+    return i < back[0] if len(intervals[back[0]].samples) == 0 else False
 
 
 def _thin(S: MapSamples, iv: _Interval, gap: float) -> _Interval:
@@ -578,10 +596,23 @@ def _branch_arrays(S: MapSamples, iv: _Interval) -> tuple[FloatArray, FloatArray
     return np.vstack(pts), np.concatenate(rad)
 
 
-def _missing_fit(tr: _Tracer, S: MapSamples, iv: _Interval, tol: float) -> list[float]:
-    """Loop coordinates of exact midpoints that the fitted spline misses by > tol/2."""
+@dataclass(frozen=True)
+class _FitCheck:
+    """A fitted branch and the exact midpoints it must pass within the tolerance."""
+
+    key: tuple[int, float, float, int]
+    loop: int
+    spline: Spline
+    mids: FloatArray  # loop coordinates of the midpoints
+    ua: FloatArray  # spline parameters of the samples around each midpoint
+    ub: FloatArray
+
+
+def _fit_check(tr: _Tracer, S: MapSamples, iv: _Interval) -> _FitCheck | None:
+    """The spline through the interval's samples and the midpoints to check it at
+    (None when there is nothing to check)."""
     if len(iv.samples) == 0:
-        return []
+        return None
     key = (
         iv.loop,
         iv.start.s_hi if iv.start is not None else -1.0,
@@ -589,10 +620,7 @@ def _missing_fit(tr: _Tracer, S: MapSamples, iv: _Interval, tol: float) -> list[
         len(iv.samples),
     )
     if key in tr.fit_ok:
-        return []
-    pts, rad = _branch_arrays(S, iv)
-    spline = fit_spline(np.column_stack([pts, rad]))
-    u = _knots_of(pts)
+        return None
     length = tr.L[iv.loop]
     s = S.s[iv.samples]
     if iv.start is None:
@@ -604,20 +632,41 @@ def _missing_fit(tr: _Tracer, S: MapSamples, iv: _Interval, tol: float) -> list[
     ok = d > 4 * tr.cfg.eps_s
     if not np.any(ok):
         tr.fit_ok.add(key)
-        return []
+        return None
+    pts, rad = _branch_arrays(S, iv)
+    spline = tr.fit(np.column_stack([pts, rad]))
+    u = _knots_of(pts)
     mids = s_ext[:-1][ok] + 0.5 * d[ok]
-    ua, ub = u[:-1][ok], u[1:][ok]
-    centre, radius, is_self = tr.eval_cached(iv.loop, mids)
-    uu = ua[:, None] + (ub - ua)[:, None] * np.linspace(0.0, 1.0, 17)[None, :]
-    cur = spline(uu.ravel()).reshape(len(mids), 17, -1)
-    dist = np.linalg.norm(cur[..., :2] - centre[:, None, :], axis=2)
-    j = np.argmin(dist, axis=1)
-    r = np.arange(len(mids))
-    bad = (dist[r, j] > 0.5 * tol) | (np.abs(cur[r, j, 2] - radius) > 0.5 * tol)
-    bad &= ~is_self  # next to a curvature-centre end point: the end point rules there
-    if not np.any(bad):
-        tr.fit_ok.add(key)
-    return [float(x) for x in mids[bad]]
+    return _FitCheck(key, iv.loop, spline, mids, u[:-1][ok], u[1:][ok])
+
+
+def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) -> list[MapSamples]:
+    """Samples at the exact midpoints that the fitted splines miss by more than tol/2
+    (all branches' midpoints are evaluated at once)."""
+    checks = [c for c in (_fit_check(tr, S, iv) for iv in kept) if c is not None]
+    if not checks:
+        return []
+    loops = np.concatenate([np.full(len(c.mids), c.loop, dtype=np.int64) for c in checks])
+    centre, radius, is_self = tr.eval_cached(loops, np.concatenate([c.mids for c in checks]))
+    add_loop: list[IntArray] = []
+    add_s: list[FloatArray] = []
+    k = 0
+    for c in checks:
+        sl = slice(k, k + len(c.mids))
+        k += len(c.mids)
+        uu = c.ua[:, None] + (c.ub - c.ua)[:, None] * np.linspace(0.0, 1.0, 17)[None, :]
+        cur = c.spline(uu.ravel()).reshape(len(c.mids), 17, -1)
+        dist = np.linalg.norm(cur[..., :2] - centre[sl, None, :], axis=2)
+        j = np.argmin(dist, axis=1)
+        r = np.arange(len(c.mids))
+        bad = (dist[r, j] > 0.5 * tol) | (np.abs(cur[r, j, 2] - radius[sl]) > 0.5 * tol)
+        bad &= ~is_self[sl]  # next to a curvature-centre end point: the end point rules there
+        if not np.any(bad):
+            tr.fit_ok.add(c.key)
+        add_loop.append(np.full(int(bad.sum()), c.loop, dtype=np.int64))
+        add_s.append(c.mids[bad])
+    loop, s = np.concatenate(add_loop), np.concatenate(add_s)
+    return [tr.eval(loop, s)] if len(s) else []
 
 
 def _knots_of(pts: FloatArray) -> FloatArray:
@@ -627,7 +676,7 @@ def _knots_of(pts: FloatArray) -> FloatArray:
 
 
 def _assemble(
-    boundary: Boundary,
+    tr: _Tracer,
     frame: Frame,
     tol: float,
     S: MapSamples,
@@ -635,6 +684,7 @@ def _assemble(
     n_nodes: int,
     kept: list[_Interval],
 ) -> MedialGraph:
+    boundary = tr.b
     elements = tuple(
         BoundaryElement(
             e.index,
@@ -674,7 +724,7 @@ def _assemble(
             extent = np.linalg.norm(pts - iv.start.point, axis=1).max()
             if extent <= 4 * tol:  # a degenerate stretch between events of one node
                 continue
-        spline: Spline = fit_spline(np.column_stack([pts, rad]))
+        spline = tr.fit(np.column_stack([pts, rad]))
         smp = iv.samples
         a_el, a_par, a_pt = S.element[smp], S.param[smp], S.foot[smp]
         b_el, b_par, b_pt = S.partner_element[smp], S.partner_param[smp], S.partner_point[smp]
