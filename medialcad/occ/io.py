@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import logging
 import os
+import re
 import tempfile
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
@@ -207,6 +208,12 @@ def _read_step(p: Path, head: bytes) -> list[TopoDS_Shape]:
 def _read_brep(p: Path, head: bytes) -> list[TopoDS_Shape]:
     if not _strip_bom(head).startswith(_BREP_MAGICS):
         raise ReadError(f"{p}: not a BREP file (no OpenCascade topology header)")
+    # OCC's BREP reader can loop forever on a truncated file: a complete one ends with the
+    # root shape's reference ("+1 1"), so anything else is refused before OCC sees it
+    tail = p.read_bytes()[-256:].split(b"\n")
+    last = next((ln.strip() for ln in reversed(tail) if ln.strip()), b"")
+    if not re.fullmatch(rb"[+\-]\d+ \d+", last):
+        raise ReadError(f"{p}: BREP file could not be parsed (truncated or corrupt)")
     shape = TopoDS_Shape()
     try:
         with quiet_messenger():
