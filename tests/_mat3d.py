@@ -22,7 +22,7 @@ from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex, BRepBuilderAPI_Transform
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.BRepExtrema import BRepExtrema_ExtPC, BRepExtrema_ExtPF
+from OCP.BRepExtrema import BRepExtrema_DistShapeShape, BRepExtrema_ExtPC, BRepExtrema_ExtPF
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakePrism
 from OCP.BRepTools import BRepTools
@@ -335,6 +335,10 @@ class ComplexDistance:
                 if ext.IsDone():
                     for k in range(1, ext.NbExt() + 1):
                         best = min(best, math.sqrt(ext.SquareDistance(k)))
+                else:  # the extrema gave up (seen on planar mid sheets): the full search
+                    dss = BRepExtrema_DistShapeShape(vx, shapes[i])
+                    if dss.IsDone():
+                        best = min(best, dss.Value())
         return best
 
     def _extrema(self, i: int, is_face: bool) -> Any:

@@ -11,8 +11,11 @@ Nothing here imports medialcad.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+import os
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
+from pathlib import Path
 
 import cadquery as cq
 import numpy as np
@@ -21,6 +24,7 @@ from hypothesis import strategies as st
 from numpy.typing import ArrayLike, NDArray
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
 from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepTools import BRepTools
 from OCP.gp import gp_Trsf
 from OCP.TopoDS import TopoDS, TopoDS_Face
 
@@ -31,6 +35,7 @@ __all__ = [
     "annulus",
     "bspline_blob",
     "circle",
+    "dump_on_failure",
     "ellipse",
     "filleted_polygon",
     "is_valid",
@@ -135,6 +140,22 @@ def is_valid(face: TopoDS_Face) -> bool:
 
 
 # --------------------------------------------------------------------------- builders
+
+
+@contextmanager
+def dump_on_failure(shape: object, label: str, env: str = "MEDIALCAD_FAILED_SHAPES") -> Iterator[None]:
+    """Write ``shape`` as BREP to the folder ``$env`` (if set) when the block raises, so a
+    fuzzing failure can be replayed outside hypothesis."""
+    try:
+        yield
+    except BaseException:
+        dump = os.environ.get(env)
+        if dump:
+            Path(dump).mkdir(parents=True, exist_ok=True)
+            path = Path(dump) / f"{label.replace(' ', '_')}-{abs(hash(shape)) % 10**8}.brep"
+            BRepTools.Write_s(shape, str(path))
+            print(f"failing shape written to {path}")
+        raise
 
 
 def _face(outer: cq.Wire, inners: Sequence[cq.Wire] = ()) -> TopoDS_Face:

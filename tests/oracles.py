@@ -383,7 +383,7 @@ class FaceBoundary:
         lo, hi = 0.0, bound + 10 * self.eps
         s = guess if guess is not None and lo < guess < hi else hi - 5 * self.eps
         expand, oks, fails = xtol, 0, 0
-        for _ in range(400):
+        for it in range(400):
             ok, d, w = self._probe(q, u, s)
             if ok:
                 lo, oks, fails = s, oks + 1, 0
@@ -403,9 +403,13 @@ class FaceBoundary:
                     cand = newton if fails <= 2 else hi - 4.0 * (hi - newton)
                     if hi - cand < 0.5 * xtol:
                         cand = hi - xtol
-            if cand is None or not (lo < cand < hi):
+            # every fourth probe bisects: the predicate is monotone, so the bracket halves
+            # at least that often (Newton from a far failure can keep landing on one ok point)
+            if cand is None or not (lo < cand < hi) or it % 4 == 3:
                 cand = 0.5 * (lo + hi)
             s = cand
+        else:
+            raise RuntimeError(f"ray depth did not converge: bracket [{lo}, {hi}]")
         return 0.5 * (lo + hi)
 
     # -- boundary geometry

@@ -666,7 +666,7 @@ def ray_depth(
     lo, hi = 0.0, bound + 10 * xtol  # hi is taken as failing without a probe
     s = guess if guess is not None and lo < guess < hi else hi - 5 * xtol
     expand, oks, fails = xtol, 0, 0
-    for _ in range(400):
+    for it in range(400):
         ok, d, w = sb.probe(q, u, s)
         if ok:
             lo, oks, fails = s, oks + 1, 0
@@ -691,9 +691,14 @@ def ray_depth(
                 cand = newton if fails <= 2 else hi - 4.0 * (hi - newton)
                 if hi - cand < 0.5 * xtol:
                     cand = hi - xtol
-        if cand is None or not (lo < cand < hi):
+        # every fourth probe bisects: the predicate is monotone, so the bracket halves at
+        # least that often (Newton from the far side of a ball touching a distant part can
+        # land on the same ok point forever)
+        if cand is None or not (lo < cand < hi) or it % 4 == 3:
             cand = 0.5 * (lo + hi)
         s = cand
+    else:
+        raise RuntimeError(f"ray depth did not converge: bracket [{lo}, {hi}]")
     s_star = 0.5 * (lo + hi)
     if check_inside and lo > 0 and not sb.inside([q + 0.5 * lo * u])[0]:
         return 0.0

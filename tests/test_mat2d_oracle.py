@@ -45,16 +45,8 @@ def holes(face: Any) -> int:
 
 
 def check_with_oracles(face: Any, label: str, n_boundary: int = 200, per_branch: int = 30) -> None:
-    try:
+    with F.dump_on_failure(face, label, env="MEDIALCAD_FAILED_FACES"):
         _check_with_oracles(face, label, n_boundary, per_branch)
-    except BaseException:
-        dump = os.environ.get("MEDIALCAD_FAILED_FACES")
-        if dump:
-            Path(dump).mkdir(parents=True, exist_ok=True)
-            path = Path(dump) / f"{label}-{abs(hash(face)) % 10**8}.brep"
-            BRepTools.Write_s(face, str(path))
-            print(f"failing face written to {path}")
-        raise
 
 
 def _check_with_oracles(face: Any, label: str, n_boundary: int, per_branch: int) -> None:

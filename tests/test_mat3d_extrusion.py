@@ -483,16 +483,17 @@ HYPO3 = settings(
 def _random_extrusion(face: Any, factor: float, seed: int, label: str) -> None:
     diag = O.bbox_diagonal(face)
     solid = M.prism(face, factor * diag, F.random_placement(seed))
-    t0 = time.perf_counter()
-    result = M.extrusion_mat(solid)
-    seconds = time.perf_counter() - t0
-    rep = M.check(
-        solid, result, f"{label} L={factor:.2f}d", per_face=10, max_faces=16, max_edges=16,
-        per_edge=2, n_complete=60, seed=seed,
-    )  # fmt: skip
-    rep.seconds["mat"] = seconds
-    print(rep.line())
-    assert not rep.failures(), f"{label}: " + "; ".join(rep.failures())
+    with F.dump_on_failure(solid, f"{label}-extrusion-seed{seed}"):
+        t0 = time.perf_counter()
+        result = M.extrusion_mat(solid)
+        seconds = time.perf_counter() - t0
+        rep = M.check(
+            solid, result, f"{label} L={factor:.2f}d", per_face=10, max_faces=16, max_edges=16,
+            per_edge=2, n_complete=60, seed=seed,
+        )  # fmt: skip
+        rep.seconds["mat"] = seconds
+        print(rep.line())
+        assert not rep.failures(), f"{label}: " + "; ".join(rep.failures())
 
 
 _LENGTH = st.floats(0.05, 3.0)

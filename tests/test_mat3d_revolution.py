@@ -1068,15 +1068,16 @@ def _revolved(face: Any, margin: float, angle: float, seed: int) -> Any:
 
 def _check_random(face: Any, margin: float, angle: float, seed: int, label: str) -> None:
     solid = _revolved(face, margin, angle, seed)
-    t0 = time.perf_counter()
-    m = revolution_mat(solid)
-    mat_s = time.perf_counter() - t0
-    num = oracle_numbers(solid, m, f"{label} {math.degrees(angle):.0f}deg", n_complete=60)
-    num.seconds["mat"] = mat_s
-    print(num.line())
-    # a known bug met by random fillets in full revolutions (seams bounding one sheet) has
-    # its own xfail test; everything else is asserted
-    assert_oracles(num, seams=False)
+    with F.dump_on_failure(solid, f"{label}-revolution-seed{seed}"):
+        t0 = time.perf_counter()
+        m = revolution_mat(solid)
+        mat_s = time.perf_counter() - t0
+        num = oracle_numbers(solid, m, f"{label} {math.degrees(angle):.0f}deg", n_complete=60)
+        num.seconds["mat"] = mat_s
+        print(num.line())
+        # a known bug met by random fillets in full revolutions (seams bounding one sheet) has
+        # its own xfail test; everything else is asserted
+        assert_oracles(num, seams=False)
 
 
 @HYPO
