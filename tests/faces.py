@@ -41,6 +41,7 @@ __all__ = [
     "is_valid",
     "l_shape",
     "line_arc_fillet_mix",
+    "nearly_symmetric_star",
     "notched_square",
     "place",
     "polygon",
@@ -143,7 +144,9 @@ def is_valid(face: TopoDS_Face) -> bool:
 
 
 @contextmanager
-def dump_on_failure(shape: object, label: str, env: str = "MEDIALCAD_FAILED_SHAPES") -> Iterator[None]:
+def dump_on_failure(
+    shape: object, label: str, env: str = "MEDIALCAD_FAILED_SHAPES"
+) -> Iterator[None]:
     """Write ``shape`` as BREP to the folder ``$env`` (if set) when the block raises, so a
     fuzzing failure can be replayed outside hypothesis."""
     try:
@@ -281,6 +284,18 @@ def star_polygon(n: int = 5, r_out: float = 1.0, r_in: float = 0.45) -> TopoDS_F
     t = np.pi * np.arange(2 * n) / n
     r = np.where(np.arange(2 * n) % 2 == 0, r_out, r_in)
     return polygon(np.c_[r * np.cos(t), r * np.sin(t)])
+
+
+def nearly_symmetric_star(skew: float) -> TopoDS_Face:
+    """A 6-pointed star (tips 0.8, reflex vertices 0.35) symmetric about the x-axis but for
+    one reflex vertex moved by ``skew`` along y: its 6-fold branch point splits into nearby
+    ones (several within the tolerance for small ``skew``), and on the branches around them
+    the two sides change element ``~skew`` apart (a fuzzed profile met 1.2e-7 and 4.9e-8)."""
+    t = np.arange(12) * math.pi / 6
+    r = np.where(np.arange(12) % 2 == 0, 0.8, 0.35)
+    pts = np.column_stack([r * np.cos(t), r * np.sin(t)])
+    pts[1, 1] += skew
+    return polygon(pts)
 
 
 def filleted_polygon(pts: ArrayLike, radii: Sequence[float]) -> TopoDS_Face:

@@ -466,6 +466,20 @@ def test_radius_sidecar_and_radius_at(mats: Cache, tmp_path: Path) -> None:
         assert np.abs(got - want).max() <= r.tol, f"{s.name}: radius_at vs distance"
 
 
+@pytest.mark.parametrize("length", [0.3, 2.0])
+@pytest.mark.parametrize("skew", [1e-7, 3e-6, 1e-4])
+def test_nearly_degenerate_branch_points(length: float, skew: float) -> None:
+    """A 6-pointed star with one reflex vertex moved by ``skew`` (its branch point splits
+    into nearby ones), extruded thin (mid sheet) and thick: the oracles pass and the complex
+    is contractible (chi was -3 at skew 1e-4: a cut's feet solved on the wrong element)."""
+    solid = M.prism(F.nearly_symmetric_star(skew), length, F.random_placement(5))
+    result = M.extrusion_mat(solid)
+    rep = M.check(solid, result, f"star skew {skew:g} L={length}", n_complete=40)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())
+    assert rep.euler == rep.solid_euler == 1
+
+
 # --------------------------------------------------------------------------- random solids
 
 _EXAMPLES = int(os.environ.get("MEDIALCAD_HYPOTHESIS_EXAMPLES", "6"))

@@ -72,6 +72,7 @@ class _Event:
     radius: float
     feet: list[tuple[int, float, FloatArray]] = field(default_factory=list)
     node: int = -1
+    spread: float = 0.0  # how far the events merged into this one's node lay from it
 
 
 def _initial_samples(boundary: Boundary, spacing: float) -> tuple[IntArray, FloatArray]:
@@ -396,8 +397,10 @@ def _merge_nodes(events: list[_Event], radius: float) -> int:
             corner = [e for e in group if e.kind is NodeKind.CONVEX_VERTEX]
             pt = corner[0].point if corner else np.mean([e.point for e in group], axis=0)
             r = 0.0 if corner else float(np.mean([e.radius for e in group]))
+            spread = max(float(np.linalg.norm(e.point - pt)) for e in group)
             for e in group:
                 e.point, e.radius = pt, r
+                e.spread = max(e.spread, spread)
     return len(roots)
 
 
@@ -488,7 +491,7 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
             intervals, tables = _intervals(S, events, tr.L)
             twin = _twins(S, intervals, tables, tr.L)
         n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
-        kept = [_thin(S, iv, 1e-2 * tol) for iv in _dedupe(intervals, twin)]
+        kept = [_thin(S, iv, 1e-2 * tol, 0.5 * tol) for iv in _dedupe(intervals, twin)]
         added = _missing_fit(tr, S, kept, tol)
         if not added:
             return _assemble(tr, frame, tol, S, events, n_nodes, kept)
@@ -564,10 +567,13 @@ def _lower_side(
     return i < back[0] if len(intervals[back[0]].samples) == 0 else False
 
 
-def _thin(S: MapSamples, iv: _Interval, gap: float) -> _Interval:
+def _thin(S: MapSamples, iv: _Interval, gap: float, cap: float) -> _Interval:
     """Drop samples closer than ``gap`` to the point before them (the bisection that
     isolates an event leaves clusters of them next to its node; interpolating through
-    near-coincident points would make the spline oscillate)."""
+    near-coincident points would make the spline oscillate), and samples inside a node
+    merged from several nearby events (within 3 times their spread, at most ``cap``): the
+    tiny branches between nearly coincident branch points (a slightly perturbed regular
+    polygon) would kink the spline there."""
     if len(iv.samples) == 0:
         return iv
     c = S.centre[iv.samples]
@@ -575,9 +581,12 @@ def _thin(S: MapSamples, iv: _Interval, gap: float) -> _Interval:
     keep = np.linalg.norm(c - prev, axis=1) >= gap
     if iv.start is None:
         keep[0] = True
-    if iv.end is not None:
-        close = np.linalg.norm(c - iv.end.point, axis=1) < gap
-        keep &= ~close
+    for ev in (iv.start, iv.end):
+        if ev is None:
+            continue
+        near = max(gap, min(cap, 3.0 * ev.spread)) if ev is iv.end or ev.spread > 0 else 0.0
+        if near > 0:
+            keep &= np.linalg.norm(c - ev.point, axis=1) >= near
     return _Interval(iv.loop, iv.start, iv.end, iv.samples[keep])
 
 
@@ -640,6 +649,21 @@ def _fit_check(tr: _Tracer, S: MapSamples, iv: _Interval) -> _FitCheck | None:
     return _FitCheck(key, iv.loop, spline, mids, u[:-1][ok], u[1:][ok])
 
 
+def _nearest_on_spline(c: _FitCheck, centre: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Distance from each exact midpoint centre to the nearest of 17 points of the spline
+    between the samples around it, and the spline's radius there. Deliberately coarse: it
+    also bounds how far the spline's parametrisation may drift from the loop coordinate's
+    (a Gauss-Newton projection instead let a spline pass its midpoints yet stray 4 tol
+    between them, next to a 1e-3 notch)."""
+    n = len(c.mids)
+    uu = c.ua[:, None] + (c.ub - c.ua)[:, None] * np.linspace(0.0, 1.0, 17)[None, :]
+    cur = c.spline(uu.ravel()).reshape(n, 17, -1)
+    dist = np.linalg.norm(cur[..., :2] - centre[:, None, :], axis=2)
+    j = np.argmin(dist, axis=1)
+    r = np.arange(n)
+    return dist[r, j], cur[r, j, 2]
+
+
 def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) -> list[MapSamples]:
     """Samples at the exact midpoints that the fitted splines miss by more than tol/2
     (all branches' midpoints are evaluated at once)."""
@@ -654,12 +678,8 @@ def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) 
     for c in checks:
         sl = slice(k, k + len(c.mids))
         k += len(c.mids)
-        uu = c.ua[:, None] + (c.ub - c.ua)[:, None] * np.linspace(0.0, 1.0, 17)[None, :]
-        cur = c.spline(uu.ravel()).reshape(len(c.mids), 17, -1)
-        dist = np.linalg.norm(cur[..., :2] - centre[sl, None, :], axis=2)
-        j = np.argmin(dist, axis=1)
-        r = np.arange(len(c.mids))
-        bad = (dist[r, j] > 0.5 * tol) | (np.abs(cur[r, j, 2] - radius[sl]) > 0.5 * tol)
+        dist, rad = _nearest_on_spline(c, centre[sl])
+        bad = (dist > 0.5 * tol) | (np.abs(rad - radius[sl]) > 0.5 * tol)
         bad &= ~is_self[sl]  # next to a curvature-centre end point: the end point rules there
         if not np.any(bad):
             tr.fit_ok.add(c.key)

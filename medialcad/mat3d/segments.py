@@ -371,22 +371,14 @@ def _split(
             common = min(own, key=lambda q: float(np.linalg.norm(q - mid))) if own else mid
             fa[where] = fb[where] = np.asarray(common, dtype=float)
 
-    # cut points: (u, kind, centre, radius, foot_a, foot_b)
-    cuts: list[tuple[float, str, FloatArray, float, FloatArray, FloatArray]] = []
+    # cut points: (u, kind, centre, radius, foot_a, foot_b, sides changing element there)
+    cuts: list[tuple[float, str, FloatArray, float, FloatArray, FloatArray, set[int]]] = []
 
-    def at(
-        uu: float, r_force: float | None, i: int
-    ) -> tuple[FloatArray, float, FloatArray, FloatArray]:
-        v = sp(np.array([uu]))[0]
-        c, r = v[:2], float(v[2]) if r_force is None else r_force
-        w = (uu - u[i]) / max(u[i + 1] - u[i], 1e-300)
-        j = i if w < 0.5 else i + 1
-        ga = _foot_on(boundary, int(ea[j]), c, float(b.foot_a_param[j]))
-        gb = _foot_on(boundary, int(eb[j]), c, float(b.foot_b_param[j]))
-        return c, r, ga, gb
-
+    # where each side changes element, first: a cut's feet are solved on the element each
+    # side has at the cut (the nearest sample's may be past the other side's transition)
+    transitions: list[tuple[float, int, int, FloatArray]] = []  # (u, side, interval, joint)
     for i in range(n - 1):
-        for els, feet_side in ((ea, 0), (eb, 1)):
+        for els, side in ((ea, 0), (eb, 1)):
             if els[i] == els[i + 1]:
                 continue
             p, nrm = _joint(boundary, int(els[i]), int(els[i + 1]))
@@ -401,12 +393,34 @@ def _split(
                 us = float(brentq(g, lo, hi, xtol=1e-14))
             else:
                 us = lo + (hi - lo) * abs(glo) / max(abs(glo) + abs(ghi), 1e-300)
-            c, r, ga, gb = at(us, None, i)
-            if feet_side == 0:
-                ga = p
-            else:
-                gb = p
-            cuts.append((us, "transition", c, r, ga, gb))
+            transitions.append((us, side, i, p))
+
+    def element_at(side: int, uu: float, i: int) -> int:
+        els = ea if side == 0 else eb
+        if els[i] == els[i + 1]:
+            return int(els[i])
+        t = [x[0] for x in transitions if x[1] == side and x[2] == i]
+        return int(els[i] if not t or uu < t[0] else els[i + 1])
+
+    def at(uu: float, i: int) -> tuple[FloatArray, float, FloatArray, FloatArray]:
+        v = sp(np.array([uu]))[0]
+        c, r = v[:2], float(v[2])
+        w = (uu - u[i]) / max(u[i + 1] - u[i], 1e-300)
+        feet = []
+        for side, els, pars in ((0, ea, b.foot_a_param), (1, eb, b.foot_b_param)):
+            el = element_at(side, uu, i)
+            # the parameter guess from the nearer sample on the same element
+            j = i if (w < 0.5 and els[i] == el) or els[i + 1] != el else i + 1
+            feet.append(_foot_on(boundary, el, c, float(pars[j])))
+        return c, r, feet[0], feet[1]
+
+    for us, side, i, p in transitions:
+        c, r, ga, gb = at(us, i)
+        if side == 0:
+            ga = p
+        else:
+            gb = p
+        cuts.append((us, "transition", c, r, ga, gb, {side}))
     if level is not None:
         if callable(level):
             gfun = level
@@ -433,20 +447,35 @@ def _split(
             else:
                 continue
             i = int(np.clip(np.searchsorted(u, us) - 1, 0, n - 2))
-            c, r, ga, gb = at(us, None, i)
-            cuts.append((us, "level", c, r, ga, gb))
+            c, r, ga, gb = at(us, i)
+            cuts.append((us, "level", c, r, ga, gb, set()))
     if b.start is None:  # closed: cut in two at the middle sample
         i = n // 2
-        cuts.append((float(u[i]), "split", ca[i], float(rad[i]), fa[i], fb[i]))
+        cuts.append((float(u[i]), "split", ca[i], float(rad[i]), fa[i], fb[i], set()))
     cuts.sort(key=lambda x: x[0])
-    # merge cuts closer than a sliver
-    merged: list[tuple[float, str, FloatArray, float, FloatArray, FloatArray]] = []
+    # merge cuts closer than a sliver; the two sides changing element within 1e-2 tol of
+    # each other (symmetric profiles) change at one cut: a sliver segment between them would
+    # be thinner than the complex's vertex merging
+    merged: list[tuple[float, str, FloatArray, float, FloatArray, FloatArray, set[int]]] = []
     for cut in cuts:
-        if merged and cut[0] - merged[-1][0] < 1e-9:
-            continue
         if cut[0] < 1e-9 or cut[0] > 1 - 1e-9:
             continue
+        if merged and cut[0] - merged[-1][0] < 1e-9:
+            continue
+        prev = merged[-1] if merged else None
+        if (
+            prev is not None
+            and cut[1] == prev[1] == "transition"
+            and not (cut[6] & prev[6])
+            and float(np.linalg.norm(cut[2] - prev[2])) < 1e-2 * graph.tol
+        ):
+            ga = cut[4] if 0 in cut[6] else prev[4]
+            gb = cut[5] if 1 in cut[6] else prev[5]
+            merged[-1] = (prev[0], "transition", prev[2], prev[3], ga, gb, prev[6] | cut[6])
+            continue
         merged.append(cut)
+    # where each side changes element
+    side_cuts = ([m[0] for m in merged if 0 in m[6]], [m[0] for m in merged if 1 in m[6]])
 
     start_end = (
         End("node", b.start, _end_kind(graph, b.start)) if b.start is not None else End("split")
@@ -470,8 +499,12 @@ def _split(
         um = 0.5 * (u0 + u1)
         k = int(np.clip(np.searchsorted(u, um) - 1, 0, n - 2))
         # element of each side on this segment: the one at the segment's middle
-        el_a = int(ea[k] if _side_before(cuts, um, u[k], u[k + 1], ea[k], ea[k + 1]) else ea[k + 1])
-        el_b = int(eb[k] if _side_before(cuts, um, u[k], u[k + 1], eb[k], eb[k + 1]) else eb[k + 1])
+        el_a = int(
+            ea[k] if _side_before(side_cuts[0], um, u[k], u[k + 1], ea[k], ea[k + 1]) else ea[k + 1]
+        )
+        el_b = int(
+            eb[k] if _side_before(side_cuts[1], um, u[k], u[k + 1], eb[k], eb[k + 1]) else eb[k + 1]
+        )
         arrays = _refine(
             boundary, sp, u0, span, el_a, el_b, w, centre, radius, foot_a, foot_b, graph.tol
         )
@@ -529,9 +562,10 @@ def _refine(
     return w, centre, radius, foot_a, foot_b
 
 
-def _side_before(cuts: list, um: float, ulo: float, uhi: float, e0: int, e1: int) -> bool:
-    """Whether the point ``um`` between two samples lies before that side's transition."""
+def _side_before(cuts: list[float], um: float, ulo: float, uhi: float, e0: int, e1: int) -> bool:
+    """Whether the point ``um`` between two samples lies before that side's transition
+    (``cuts``: where this side changes element)."""
     if e0 == e1:
         return True
-    ts = [c[0] for c in cuts if c[1] == "transition" and ulo <= c[0] <= uhi]
+    ts = [c for c in cuts if ulo <= c <= uhi]
     return not ts or um < min(ts)

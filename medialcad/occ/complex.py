@@ -319,11 +319,14 @@ class ComplexBuilder:
     def planar_faces(
         self, keys: Sequence[Hashable], origin: FloatArray, xdir: FloatArray, ydir: FloatArray
     ) -> list[TopoDS_Face]:
-        """Planar faces bounded by the curve edges ``keys`` (loops found by their vertices).
+        """Planar faces bounded by the curve edges ``keys`` (loops found by their vertices;
+        keys of rows that collapsed to a point are skipped).
 
         The plane is ``origin + x xdir + y ydir``; loops are nested by their 2D polygons.
         """
-        loops = _loops([(k, self.curve_edges[k]) for k in keys])
+        # a row that collapsed to a point (an offset curve of zero length) has no edge and
+        # adds nothing to a loop
+        loops = _loops([(k, self.curve_edges[k]) for k in keys if k in self.curve_edges])
         if not loops:
             return []
         polys = []
