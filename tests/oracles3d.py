@@ -236,8 +236,14 @@ class SolidBoundary:
         #: how often the KD-tree bracket caught a BRepExtrema miss (a diagnostic)
         self.extrema_misses = 0
 
+        # angular deflection 0.05 rad: nodes every ~R/20 on tight curves (a sharp tip of a
+        # B-spline profile), where a second contact near the first needs a node to be found
         BRepMesh_IncrementalMesh(
-            self.solid, deflection if deflection is not None else 1e-3 * self.diag, False, 0.3, True
+            self.solid,
+            deflection if deflection is not None else 1e-3 * self.diag,
+            False,
+            0.05,
+            True,
         )
         self._build_mesh()
         self._build_edge_tree()
@@ -604,8 +610,48 @@ class SolidBoundary:
             return False, d, (x - b) / d
         d, b, _, _ = self.nearest_support(x, local)
         w = (x - b) / d if d > 0 else u
-        ok = d >= s - self.eps and (d >= s or float(np.linalg.norm(b - q)) <= self.eta)
+        # "the nearest point moved off q" only counts beyond rounding (1e-12 diag, or 4e-14
+        # of the coordinates far from the origin): on a fillet's arc of contacts, points
+        # 1e-5 from q are as near as q to that
+        noise = max(1e-12 * self.diag, 4e-14 * float(np.abs(x).max()))
+        ok = d >= s - self.eps and (d >= s - noise or float(np.linalg.norm(b - q)) <= self.eta)
+        if ok:
+            # a second contact near the first (next to a curvature-centre end) can be missed by
+            # BRepExtrema and by the nearest node alone: project from nodes near the ball that
+            # are not next to q
+            other = self._second_contact(x, q, s)
+            if other is not None and other[0] < s - self.eps:
+                return False, other[0], (x - other[1]) / other[0]
         return ok, d, w
+
+    def _second_contact(
+        self, x: FloatArray, q: FloatArray, s: float
+    ) -> tuple[float, FloatArray] | None:
+        """The least exact distance from ``x`` to the boundary away from ``q``: local
+        projections from the KD-tree nodes nearest ``x`` (up to 12, within ``s`` plus a
+        margin) that are not next to ``q`` and do not project back to it; ``None`` if none."""
+        margin = min(2e-3 * self.diag, 0.25 * s)
+        sep = min(1e-3 * self.diag, 0.1 * s)
+        idx = self._tree.query_ball_point(x, s + margin)
+        if not idx:
+            return None
+        idx = np.asarray(idx)
+        nodes = self._nodes[idx]
+        far = np.linalg.norm(nodes - q, axis=1) > sep
+        idx, nodes = idx[far], nodes[far]
+        best: tuple[float, FloatArray] | None = None
+        for j in np.argsort(np.linalg.norm(nodes - x, axis=1))[:12]:
+            cand = float(np.linalg.norm(nodes[j] - x)), nodes[j].copy()
+            face, uv = int(self._node_face[idx[j]]), self._node_uv[idx[j]]
+            if np.isfinite(uv).all():
+                dp, qp, _ = self._project(x, face, uv)
+                if dp < cand[0]:
+                    cand = dp, qp
+            if float(np.linalg.norm(cand[1] - q)) <= sep:
+                continue  # back in q's basin
+            if best is None or cand[0] < best[0]:
+                best = cand
+        return best
 
 
 def _iter(shape: TopoDS_Shape, kind: Any) -> list[TopoDS_Shape]:

@@ -1128,12 +1128,6 @@ SECTION_KINK = (
     "branches to it (2D soundness 1692 and 231 tol): 104 of 256 sheet samples unsound "
     "(6.5e-2 diag), radius error 2.6e-3 diag, chi 4 != 0"
 )
-NEAR_CIRCLE = (
-    "near-circular B-spline profile revolved by 5 degrees (mid sheet): the planar mid sheet "
-    "fails BRepCheck (UnorientableShape), and the start and end caps of one segment are 3.3 "
-    "tol unsound near the profile's outermost point (x 1.53, phi < 2.5 deg): they carry "
-    "r = x sin(phi) but the true d(q) there differs by up to 2.9 tol (the cap rulings' feet)"
-)
 
 
 @pytest.mark.parametrize(
@@ -1160,11 +1154,11 @@ def test_bspline_blob_profile(angle: float) -> None:
     assert_oracles(num)
 
 
-@pytest.mark.xfail(strict=False, reason=NEAR_CIRCLE)
 def test_near_circular_bspline_profile_small_angle() -> None:
     """The simplest blob (5 equal radii: nearly a circle, 4 curvature centres and 2 branch
     points close together) 1.05 from the axis, revolved by 5 degrees (far below the
-    mid-sheet threshold, about 55 degrees): the oracles pass."""
+    mid-sheet threshold, about 55 degrees): the oracles pass (they failed by 3.3 tol while
+    feet near the closed B-spline's seam were clamped there)."""
     solid = _revolved(F.bspline_blob([0.5] * 5), 0.05, math.radians(5.0), 0)
     t0 = time.perf_counter()
     m = revolution_mat(solid)
@@ -1176,7 +1170,7 @@ def test_near_circular_bspline_profile_small_angle() -> None:
     assert_oracles(num)
 
 
-@pytest.mark.xfail(strict=False, reason=f"{SECTION_KINK}; {NEAR_CIRCLE}")
+@pytest.mark.xfail(strict=False, reason=SECTION_KINK)
 @HYPO
 @given(
     face=F.random_bspline_blob(),

@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
-from medialcad.mat2d.boundary import Boundary
+from medialcad.mat2d.boundary import Boundary, Element
 from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
 
 __all__ = ["End", "Segment", "split_branches"]
@@ -84,7 +84,8 @@ def _foot_param(
         d = c - e.vertex
         return np.asarray(e.vertex, dtype=float), float(np.arctan2(d[1], d[0]))
     lo, hi = sorted((e.piece.t0, e.piece.t1))
-    t = float(np.clip(guess, lo, hi))
+    keep = _keeper(e, lo, hi)
+    t = float(keep(np.array([guess]))[0])
     for _ in range(8):
         p, d1, d2 = (a[0] for a in e.piece.curve.derivs(np.array([t])))
         g = float((p - c) @ d1)
@@ -92,10 +93,21 @@ def _foot_param(
         if h <= 0:
             break
         step = g / h
-        t = float(np.clip(t - step, lo, hi))
+        t = float(keep(np.array([t - step]))[0])
         if abs(step) < 1e-15 * max(1.0, abs(t)):
             break
     return np.asarray(e.piece.curve.point(np.array([t]))[0], dtype=float), t
+
+
+def _keeper(e: Element, lo: float, hi: float) -> Callable[[FloatArray], FloatArray]:
+    """Keeps Newton's parameters on an element: clamped to ``[lo, hi]``, or wrapped when
+    the element is a whole periodic curve (a closed B-spline is one element: clamping at its
+    seam left the feet there stuck while the centres moved on)."""
+    assert e.piece is not None
+    period = getattr(e.piece.curve, "period", None)
+    if period is not None and hi - lo >= period * (1.0 - 1e-12):
+        return lambda t: lo + np.mod(np.asarray(t, dtype=float) - lo, hi - lo)
+    return lambda t: np.clip(t, lo, hi)
 
 
 def _joint(boundary: Boundary, e_from: int, e_to: int) -> tuple[FloatArray, FloatArray]:
@@ -199,13 +211,14 @@ def _project_many(
     if e.piece is None:
         return np.broadcast_to(np.asarray(e.vertex, dtype=float), cs.shape).copy()
     lo, hi = sorted((e.piece.t0, e.piece.t1))
+    keep = _keeper(e, lo, hi)
     grid = np.linspace(lo, hi, 65)
     pg = e.piece.curve.point(grid)
     ref = cs if near is None else np.asarray(near, dtype=float)
     t = grid[np.argmin(np.linalg.norm(ref[:, None, :] - pg[None, :, :], axis=2), axis=1)]
     if near is not None:  # refine the start on a finer grid around it
         dt = (hi - lo) / 64.0
-        fine = np.clip(t[:, None] + np.linspace(-dt, dt, 33)[None, :], lo, hi)
+        fine = keep(t[:, None] + np.linspace(-dt, dt, 33)[None, :])
         pf = e.piece.curve.point(fine.ravel()).reshape(len(t), 33, 2)
         t = fine[np.arange(len(t)), np.argmin(np.linalg.norm(pf - ref[:, None, :], axis=2), axis=1)]
     for _ in range(10):
@@ -213,7 +226,7 @@ def _project_many(
         g = np.einsum("ij,ij->i", p - cs, d1)
         h = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", p - cs, d2)
         step = np.where(h > 0, g / np.where(h > 0, h, 1.0), 0.0)
-        t = np.clip(t - step, lo, hi)
+        t = keep(t - step)
         if np.all(np.abs(step) < 1e-15 * np.maximum(1.0, np.abs(t))):
             break
     return np.asarray(e.piece.curve.point(t))
