@@ -537,7 +537,7 @@ _SEED = st.integers(0, 2**16)
 
 
 # the derandomized examples pass; fresh random ones (scripts/fuzz.sh) still meet CC_END at
-# 1.2-1.7 tol in about 1 of 6, and on thin blobs (L = 0.08 d) the planar mid sheet's
+# 1.2-2.6 tol in about 1 of 6, and on thin blobs (L = 0.08 d) the planar mid sheet's
 # wire self-intersects (BRepCheck) in about 1 of 30
 @HYPO3
 @given(face=F.random_bspline_blob(), factor=_LENGTH, seed=_SEED)

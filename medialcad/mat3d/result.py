@@ -209,8 +209,11 @@ class MedialAxis3D:
         return float(self.junctions[index].radius)
 
     def thickness_at(self, point: ArrayLike) -> float:
-        """Wall thickness ``2 r`` at the medial point nearest to ``point``."""
-        return 2.0 * self.radius_at(point)
+        """Wall thickness ``2 r`` at the medial point nearest to ``point``
+        (:func:`medialcad.thickness.thickness_at`)."""
+        from medialcad.thickness import thickness_at
+
+        return thickness_at(self, point)
 
     def thickness(self, *, min_angle: float = 120.0) -> Any:
         """Minimum and maximum wall thickness with their locations

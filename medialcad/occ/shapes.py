@@ -178,8 +178,6 @@ def _one_plane(shell: TopoDS_Shell) -> bool:
     """Whether every face of ``shell`` lies in one plane (a sheet of planar regions)."""
     planes = []
     for face in faces(shell):
-        if not is_planar(face):
-            return False
         surface = BRep_Tool.Surface_s(face)
         found = GeomLib_IsPlanarSurface(surface, DEFAULT_PLANAR_TOLERANCE)
         if not found.IsPlanar():
