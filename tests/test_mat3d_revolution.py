@@ -821,6 +821,18 @@ def oracle_numbers(
     return num
 
 
+def mat_and_numbers(solid: Any, label: str, **kwargs: Any) -> tuple[Any, Numbers]:
+    """The MAT of ``solid`` (timed, as ``seconds["mat"]``) and its :func:`oracle_numbers`
+    (``kwargs`` go there), printed as one report line."""
+    t0 = time.perf_counter()
+    m = revolution_mat(solid)
+    mat_s = time.perf_counter() - t0
+    num = oracle_numbers(solid, m, label, **kwargs)
+    num.seconds["mat"] = mat_s
+    print(num.line())
+    return m, num
+
+
 def assert_oracles(num: Numbers, seams: bool = True) -> None:
     """Everything the oracles check, asserted. ``seams=False`` leaves out the free edges
     named seams and the seams bounding fewer than 3 sheets (a known bug, see
@@ -889,12 +901,7 @@ def fixture_case(name: str) -> tuple[Any, Any, Numbers]:
     """``(solid, MAT through the revolution reading, oracle numbers)``, once per fixture."""
     file, index = FIXTURES[name]
     solid = read_step(ROOT / file)[index]
-    t0 = time.perf_counter()
-    m = revolution_mat(solid)
-    mat_s = time.perf_counter() - t0
-    num = oracle_numbers(solid, m, name)
-    num.seconds["mat"] = mat_s
-    print(num.line())
+    m, num = mat_and_numbers(solid, name)
     return solid, m, num
 
 
@@ -961,12 +968,7 @@ FACTORS = {"half": 0.5, "just-below": 0.9, "just-above": 1.1, "twice": 2.0}
 def small_angle_case(factor: float) -> tuple[Any, Any, Numbers]:
     """The rectangle ``x0..x1 x [-half, half]`` revolved by ``factor`` times the threshold."""
     solid = revolve(F.polygon(_sector_outline()), factor * SMALL, SECTOR_PLACEMENT)
-    t0 = time.perf_counter()
-    m = revolution_mat(solid)
-    mat_s = time.perf_counter() - t0
-    num = oracle_numbers(solid, m, f"sector x{factor}", n_complete=60)
-    num.seconds["mat"] = mat_s
-    print(num.line())
+    m, num = mat_and_numbers(solid, f"sector x{factor}", n_complete=60)
     return solid, m, num
 
 
@@ -1069,12 +1071,7 @@ def _revolved(face: Any, margin: float, angle: float, seed: int) -> Any:
 def _check_random(face: Any, margin: float, angle: float, seed: int, label: str) -> None:
     solid = _revolved(face, margin, angle, seed)
     with F.dump_on_failure(solid, f"{label}-revolution-seed{seed}"):
-        t0 = time.perf_counter()
-        m = revolution_mat(solid)
-        mat_s = time.perf_counter() - t0
-        num = oracle_numbers(solid, m, f"{label} {math.degrees(angle):.0f}deg", n_complete=60)
-        num.seconds["mat"] = mat_s
-        print(num.line())
+        _, num = mat_and_numbers(solid, f"{label} {math.degrees(angle):.0f}deg", n_complete=60)
         # a known bug met by random fillets in full revolutions (seams bounding one sheet) has
         # its own xfail test; everything else is asserted
         assert_oracles(num, seams=False)
@@ -1112,9 +1109,7 @@ def test_nearly_degenerate_branch_points(angle_deg: float, skew: float) -> None:
     skews of 1e-4 had chi -3 (a cut's feet solved on the wrong element)."""
     star = F.place(F.nearly_symmetric_star(skew), F.Placement(np.eye(3), np.array([1.5, 0, 0])))
     solid = revolve(star, math.radians(angle_deg), F.random_placement(3))
-    m = revolution_mat(solid)
-    num = oracle_numbers(solid, m, f"star skew {skew:g} {angle_deg:g}deg", n_complete=40)
-    print(num.line())
+    _, num = mat_and_numbers(solid, f"star skew {skew:g} {angle_deg:g}deg", n_complete=40)
     assert_oracles(num, seams=False)
 
 
@@ -1143,14 +1138,9 @@ def test_bspline_blob_profile(angle: float) -> None:
     """A periodic B-spline profile (the 2D suite's blob) revolved about an axis 0.5 away:
     the oracles pass and the sheets are sewn."""
     solid = _revolved(F.bspline_blob(BLOB), 0.5, angle, 3)
-    t0 = time.perf_counter()
-    m = revolution_mat(solid)
-    mat_s = time.perf_counter() - t0
-    num = oracle_numbers(
-        solid, m, f"blob {math.degrees(angle):.0f}deg", max_samples=400, n_complete=60
+    _, num = mat_and_numbers(
+        solid, f"blob {math.degrees(angle):.0f}deg", max_samples=400, n_complete=60
     )
-    num.seconds["mat"] = mat_s
-    print(num.line())
     assert_oracles(num)
 
 
@@ -1160,13 +1150,8 @@ def test_near_circular_bspline_profile_small_angle() -> None:
     mid-sheet threshold, about 55 degrees): the oracles pass (they failed by 3.3 tol while
     feet near the closed B-spline's seam were clamped there)."""
     solid = _revolved(F.bspline_blob([0.5] * 5), 0.05, math.radians(5.0), 0)
-    t0 = time.perf_counter()
-    m = revolution_mat(solid)
-    mat_s = time.perf_counter() - t0
+    m, num = mat_and_numbers(solid, "near circle 5deg", max_samples=400, n_complete=60)
     assert any(s.role == "mid" for s in m.sheets)
-    num = oracle_numbers(solid, m, "near circle 5deg", max_samples=400, n_complete=60)
-    num.seconds["mat"] = mat_s
-    print(num.line())
     assert_oracles(num)
 
 
