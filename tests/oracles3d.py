@@ -54,6 +54,7 @@ from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
 from OCP.Extrema import Extrema_ExtAlgo, Extrema_ExtFlag
 from OCP.GCPnts import GCPnts_AbscissaPoint
+from OCP.GeomAbs import GeomAbs_Plane
 from OCP.gp import gp_Pnt2d
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
 from OCP.TopAbs import (
@@ -219,6 +220,7 @@ class SolidBoundary:
         ]
         self.shell = _compound(self.faces)  # vs a solid, DSS answers 0 inside
         self._surf = [BRepAdaptor_Surface(f) for f in self.faces]
+        self._planar = [s.GetType() == GeomAbs_Plane for s in self._surf]
         self._sas = [ShapeAnalysis_Surface(BRep_Tool.Surface_s(f)) for f in self.faces]
         self._face_classifier = BRepClass_FaceClassifier()
         # surface normal (D1U x D1V) times this sign = inward normal; checked in _orient_faces
@@ -492,6 +494,14 @@ class SolidBoundary:
                     ext.Perform(vx, shapes[i])
                 else:
                     ext.Perform(vx)
+                if is_face and (not ext.IsDone() or ext.NbExt() == 0):
+                    # BRepExtrema_ExtPF answers nothing where its face classifier errs:
+                    # seen at a point whose projection is inside a planar bottom face
+                    # (classified OUT there, IN 1e-9 away): project and classify again
+                    got = self._project_fallback(x, int(i), best)
+                    if got is not None and got[0] < best:
+                        best, foot, face, uv = got[0], got[1], int(i), got[2]
+                    continue
                 if not ext.IsDone():
                     continue
                 for k in range(1, ext.NbExt() + 1):
@@ -500,6 +510,32 @@ class SolidBoundary:
                         best, foot = dk, _xyz(ext.Point(k))
                         face, uv = (int(i), np.array(ext.Parameter(k))) if is_face else (None, None)
         return best, foot, face, uv
+
+    def _project_fallback(
+        self, x: FloatArray, face: int, best: float
+    ) -> tuple[float, FloatArray, FloatArray] | None:
+        """For a planar face, the orthogonal projection of ``x`` if it is nearer than
+        ``best`` and inside the face: classified IN, or OUT but IN at the two points
+        1e-4 of the face's parameter box either side of it in u (the classifier answered
+        OUT on a 1e-5 blob in the middle of a planar face); else ``None``."""
+        if not self._planar[face]:
+            return None
+        p2 = self._sas[face].ValueOfUV(_pnt(x), 1e-12 * self.diag)
+        u0, v0 = p2.X(), p2.Y()
+        q = _xyz(self._surf[face].Value(u0, v0))
+        d = float(np.linalg.norm(q - x))
+        if d >= best:
+            return None
+        umin, umax, vmin, vmax = BRepTools.UVBounds_s(self.faces[face])
+        ring = 1e-4 * math.hypot(umax - umin, vmax - vmin)
+        for du in (0.0, ring, -ring):
+            self._face_classifier.Perform(self.faces[face], gp_Pnt2d(u0 + du, v0), 1e-9)
+            inside = self._face_classifier.State() != TopAbs_OUT
+            if du == 0.0 and inside:
+                break
+            if du != 0.0 and not inside:
+                return None
+        return d, q, np.array([u0, v0])
 
     def _project(
         self, x: FloatArray, face: int, uv: FloatArray

@@ -60,6 +60,41 @@ def test_nearly_flat_convex_corner(kink: float) -> None:
     _check_oracles(face, mat)
 
 
+@pytest.mark.parametrize("kink", [1e-4, 1e-3, 1e-2, 1e-1])
+def test_spoke_branch_point_of_a_nearly_flat_corner_is_exact(kink: float) -> None:
+    """The spoke's branch point of the bent plate above lies on x = 5 at the height ``y``
+    equidistant from the bottom edge and the bent top edge: ``y = (2 + h) c / (1 + c)``,
+    ``c = cos(kink / 2)``. Its centre moves ~1/kink times faster than the boundary point
+    near the corner, so a branch point placed by bracketing the boundary coordinate alone
+    was 2.5 tol off at kink 1e-4 (the tie is bracketed until the centres either side agree)."""
+    h = 5 * np.tan(kink / 2)
+    face = _poly([(0, 0), (10, 0), (10, 2), (5, 2 + h), (0, 2)])
+    mat = medialcad.medial_axis_2d(face)
+    c = np.cos(kink / 2)
+    y = (2 + h) * c / (1 + c)
+    spoke = [n for n in mat.branch_points if abs(n.point[0] - 5) < 1e-3]
+    assert len(spoke) == 1
+    assert np.linalg.norm(spoke[0].point[:2] - [5.0, y]) <= mat.tol
+    assert abs(spoke[0].radius - y) <= mat.tol
+
+
+def test_many_nearly_flat_corners_give_a_tree() -> None:
+    """A 300-gon sampled from a smooth star: every convex corner is nearly flat and its
+    spoke's branch point sits a fraction of an edge from it. A spoke traced from its two
+    sides must be kept once (both were kept, as cycles, when the middle sample of one side
+    was the one hugging the branch point, its partner inside the branch point's event)."""
+    n = 300
+    a = 2 * np.pi * np.arange(n) / n
+    r = 50 * (1 + 0.15 * np.sin(7 * a) + 0.05 * np.sin(23 * a))
+    face = _poly(list(zip((r * np.cos(a)).tolist(), (r * np.sin(a)).tolist(), strict=True)))
+    mat = medialcad.medial_axis_2d(face)
+    assert cycle_rank(mat) == (1, 0)
+    deg = _degrees(mat)
+    # the star is symmetric about x = 0: its branch points there have 4 footpoints
+    assert all(deg[n.index] == (1 if n.kind is CV else len(n.footpoints)) for n in mat.nodes)
+    assert all(len(n.footpoints) >= 3 for n in mat.branch_points)
+
+
 @pytest.mark.parametrize("skew", [0.0, 1e-9, 1e-7, 1e-6, 3e-6, 1e-5, 1e-4, 1e-2])
 def test_branch_point_split_by_a_small_perturbation(skew: float) -> None:
     """A 6-pointed star whose 6-fold branch point is split by moving one reflex vertex by

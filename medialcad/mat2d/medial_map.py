@@ -30,7 +30,7 @@ from scipy.spatial import cKDTree
 from medialcad.mat2d.boundary import Boundary, Element
 from medialcad.mat2d.curves import CircleCurve, LineCurve
 
-__all__ = ["Candidates", "MapSamples", "build_candidates", "evaluate"]
+__all__ = ["Candidates", "MapSamples", "build_candidates", "evaluate", "pair_minima"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -943,3 +943,17 @@ def evaluate(
         partner_s=p_s,
         is_self=is_self,
     )
+
+
+def pair_minima(
+    boundary: Boundary, cands: Candidates, loop: IntArray, s: FloatArray, elem: IntArray, tol: float
+) -> FloatArray:
+    """The minimum of ``f`` at each boundary point ``(loop, s)`` over one given element
+    ``elem`` each: the radius of the largest disk tangent there that that element alone
+    allows (``inf`` where it allows any). The same values :func:`evaluate` minimizes."""
+    loop = np.asarray(loop, dtype=np.int64)
+    s = np.asarray(s, dtype=float)
+    rows = _rows_at(boundary, cands, loop, s, tol)
+    tiny = 1e-12 * boundary.diag
+    m = len(s)
+    return _solve_pairs(boundary, cands, rows, np.arange(m), np.asarray(elem, np.int64), tiny)[0]

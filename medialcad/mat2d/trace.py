@@ -20,6 +20,7 @@ within half the tolerance.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,6 +29,7 @@ from scipy.spatial import cKDTree
 from medialcad.errors import ComputationError
 from medialcad.frame import Frame
 from medialcad.mat2d.boundary import Boundary
+from medialcad.mat2d.curves import LineCurve
 from medialcad.mat2d.graph import (
     BoundaryElement,
     Branch,
@@ -37,7 +39,7 @@ from medialcad.mat2d.graph import (
     Node,
     NodeKind,
 )
-from medialcad.mat2d.medial_map import MapSamples, build_candidates, evaluate
+from medialcad.mat2d.medial_map import MapSamples, build_candidates, evaluate, pair_minima
 from medialcad.mat2d.spline import Spline, fit_spline
 
 __all__ = ["TraceSettings", "trace_medial_graph"]
@@ -79,13 +81,13 @@ def _initial_samples(boundary: Boundary, spacing: float) -> tuple[IntArray, Floa
     loops, ss = [], []
     for e in boundary.elements:
         n = max(4, int(np.ceil(e.length / spacing)))
-        if e.piece is not None:
+        if e.piece is not None and not isinstance(e.piece.curve, LineCurve):
             # curved edges: at least one sample per 4 degrees of turning
             t = np.linspace(e.piece.t0, e.piece.t1, 33)
             _, _, k = boundary.frame_at(e, t)
             turn = float(np.mean(np.abs(k))) * e.length
             n = max(n, int(np.ceil(turn / np.radians(4.0))))
-        else:
+        elif e.piece is None:
             n = max(n, int(np.ceil(e.length / boundary.angle_scale / np.radians(4.0))))
         f = (np.arange(n) + 0.5) / n
         # and samples hugging both ends, so corners are approached closely
@@ -97,11 +99,16 @@ def _initial_samples(boundary: Boundary, spacing: float) -> tuple[IntArray, Floa
 
 
 def _near_flat_corners(
-    boundary: Boundary, cfg: TraceSettings, loop: IntArray, s: FloatArray
+    boundary: Boundary, cfg: TraceSettings, S: MapSamples
 ) -> tuple[IntArray, FloatArray]:
-    """Samples closing in on every nearly flat convex corner: its spoke is fed by a
-    boundary stretch of only ``turn * r / 2`` on each side, far below the spacing."""
-    add_l, add_s = [loop], [s]
+    """Samples closing in on every nearly flat convex corner whose spoke the first
+    samples miss: the spoke is fed by a boundary stretch of only ``turn * r / 2`` on each
+    side, far below the spacing. Where the samples hugging the corner already have their
+    partners across it, they lie on that stretch and nothing is added."""
+    add_l: list[IntArray] = []
+    add_s: list[FloatArray] = []
+    order = np.lexsort((S.s, S.loop))
+    loops, ss = S.loop[order], S.s[order]
     for c in boundary.corners:
         if not 0 < c.turn < np.pi / 6:
             continue
@@ -109,9 +116,20 @@ def _near_flat_corners(
         lo = max(1e-10 * boundary.diag / c.turn, cfg.eps_s)
         if lo >= cfg.spacing:
             continue
+        a, b = np.searchsorted(loops, [c.loop, c.loop + 1])
+        if b - a >= 2:
+            k = a + int(np.searchsorted(ss[a:b], c.s))
+            before, after = order[a + (k - a - 1) % (b - a)], order[a + (k - a) % (b - a)]
+            if (
+                S.partner_element[before] == S.element[after]
+                and S.partner_element[after] == S.element[before]
+            ):
+                continue
         d = np.geomspace(cfg.spacing, lo, 24)
         add_s.append(np.concatenate([c.s - d, c.s + d]) % boundary.loop_lengths[c.loop])
         add_l.append(np.full(2 * len(d), c.loop, dtype=np.int64))
+    if not add_s:
+        return np.zeros(0, dtype=np.int64), np.zeros(0)
     return np.concatenate(add_l), np.concatenate(add_s)
 
 
@@ -130,6 +148,7 @@ class _Tracer:
             tuple[int, float, float], tuple[FloatArray, float, FloatArray, int, float]
         ] = {}
         self.splines: dict[bytes, Spline] = {}
+        self.root_tries: dict[tuple[int, int, int, int], int] = {}
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
         els = boundary.elements
@@ -273,11 +292,16 @@ class _Tracer:
             events: list[_Event] = []
             new_loop: list[int] = []
             new_s: list[float] = []
+            jumps: list[_Jump] = []
             for lp in range(len(self.L)):
                 idx = np.nonzero(S.loop == lp)[0]
                 if len(idx) == 0:
                     continue
-                self._loop_events(S, idx, lp, events, new_loop, new_s)
+                self._loop_events(S, idx, lp, events, new_loop, new_s, jumps)
+            if jumps:
+                jl, js = self._bracket_jumps(jumps)
+                new_loop += jl
+                new_s += js
             if not new_s:
                 return S, events, True
             # the budget grows with the boundary: every element has its own samples
@@ -287,6 +311,113 @@ class _Tracer:
             S = MapSamples.concat([S, self.eval(np.array(new_loop), np.array(new_s))])
         return S, events, False
 
+    def _bracket_jumps(self, jumps: list[_Jump]) -> tuple[list[int], list[float]]:
+        """New samples for steps where the partner jumps from one element to another:
+        a pair just either side of the point where both elements allow the same disk
+        (the branch point, found on those two elements alone), or, where that fails,
+        the step split in eight."""
+        lp = np.array([j.loop for j in jumps], dtype=np.int64)
+        a = np.array([j.s0 for j in jumps])
+        w = np.array([j.ds for j in jumps])
+        e0 = np.array([j.e0 for j in jumps], dtype=np.int64)
+        e1 = np.array([j.e1 for j in jumps], dtype=np.int64)
+        x = self._jump_roots(lp, a, w, e0, e1)
+        # close around the tie: the centres either side differ by the centre's speed
+        # times the gap (large next to a nearly flat corner), kept below 1e-3 tol
+        eps = self.cfg.eps_s
+        delta = np.full(len(jumps), 1e-3 * eps)
+        has = np.nonzero(np.isfinite(x))[0]
+        if len(has):
+            loops = np.concatenate([lp[has], lp[has]])
+            xs = np.concatenate([x[has] - delta[has], x[has] + delta[has]])
+            v = pair_minima(
+                self.b,
+                self.cands,
+                loops,
+                np.mod(xs, self.L[loops]),
+                np.concatenate([e0[has], e1[has]]),
+                self.cfg.tol,
+            )
+            jump = np.abs(v[len(has) :] - v[: len(has)])
+            with np.errstate(invalid="ignore", divide="ignore"):
+                shrink = np.where(jump > 1e-3 * self.cfg.tol, 1e-3 * self.cfg.tol / jump, 1.0)
+            floor = self._root_width(lp[has])
+            delta[has] = np.maximum(delta[has] * np.nan_to_num(shrink, nan=1.0), floor)
+        out_l: list[int] = []
+        out_s: list[float] = []
+        frac = np.arange(1, 8) / 8.0
+        for i in range(len(jumps)):
+            if np.isfinite(x[i]):
+                # and a geometric cluster either side down to a tenth of the tolerance,
+                # as bisection would leave: the branches ending there are sampled
+                # densely next to their node, where feet and centres turn fastest
+                steps = w[i] * 0.125 ** np.arange(1, 40)
+                steps = steps[steps > 0.1 * self.cfg.tol]
+                pts = np.concatenate(
+                    [[x[i] - delta[i], x[i] + delta[i]], x[i] - steps, x[i] + steps]
+                )
+                pts = pts[(pts > a[i]) & (pts < a[i] + w[i])]
+            else:
+                pts = a[i] + w[i] * frac
+            out_l += [int(lp[i])] * len(pts)
+            out_s += [float(v) for v in pts]
+        return out_l, out_s
+
+    def _root_width(self, lp: IntArray) -> FloatArray:
+        """How closely the ties are solved on each loop: 1e-6 of the bisection
+        resolution, but no closer than 16 units in the last place of the coordinate."""
+        return np.maximum(1e-6 * self.cfg.eps_s, 16.0 * np.spacing(2.0 * self.L[lp]))
+
+    def _jump_roots(
+        self, lp: IntArray, a: FloatArray, w: FloatArray, e0: IntArray, e1: IntArray
+    ) -> FloatArray:
+        """Where ``f`` minimized on element ``e0`` equals ``f`` minimized on ``e1``, in
+        each step ``[a, a + w]`` (bracketed: ``e0`` wins at ``a``, ``e1`` at ``a + w``);
+        Illinois false position with a bisection every fourth step, to
+        :meth:`_root_width`. NaN where the bracket does not hold or it fails."""
+        cfg = self.cfg
+        m = len(a)
+
+        def g(idx: IntArray, x: FloatArray) -> FloatArray:
+            loops = np.concatenate([lp[idx], lp[idx]])
+            xs = np.mod(np.concatenate([x, x]), self.L[loops])
+            v = pair_minima(
+                self.b, self.cands, loops, xs, np.concatenate([e0[idx], e1[idx]]), cfg.tol
+            )
+            with np.errstate(invalid="ignore"):
+                return np.asarray(v[: len(idx)] - v[len(idx) :])
+
+        lo, hi = a.copy(), a + w
+        width = self._root_width(lp)
+        every = np.arange(m)
+        g_lo, g_hi = g(every, lo), g(every, hi)
+        ok = np.isfinite(g_lo) & np.isfinite(g_hi) & (g_lo <= 0) & (g_hi >= 0)
+        kept = np.zeros(m, dtype=np.int64)  # +1: hi moved last time, -1: lo moved
+        for it in range(200):
+            idx = np.nonzero(ok & (hi - lo > width))[0]
+            if len(idx) == 0:
+                break
+            gl, gh, l0, h0 = g_lo[idx], g_hi[idx], lo[idx], hi[idx]
+            with np.errstate(invalid="ignore", divide="ignore"):
+                xf = (l0 * gh - h0 * gl) / (gh - gl)
+            mid = 0.5 * (l0 + h0)
+            bad = ~np.isfinite(xf) | (xf <= l0) | (xf >= h0) | (it % 4 == 3)
+            xn = np.where(bad, mid, xf)
+            gx = g(idx, xn)
+            ok[idx[~np.isfinite(gx)]] = False
+            up = gx >= 0
+            zero = gx == 0
+            # Illinois: an end kept twice in a row has its value halved
+            g_lo[idx] = np.where(up & (kept[idx] == 1), 0.5 * gl, gl)
+            g_hi[idx] = np.where(~up & (kept[idx] == -1), 0.5 * gh, gh)
+            hi[idx] = np.where(up, xn, h0)
+            g_hi[idx] = np.where(up, gx, g_hi[idx])
+            lo[idx] = np.where(up & ~zero, l0, xn)
+            g_lo[idx] = np.where(up & ~zero, g_lo[idx], gx)
+            kept[idx] = np.where(up, 1, -1)
+        good = ok & (hi - lo <= width)
+        return np.where(good, 0.5 * (lo + hi), np.nan)
+
     def _loop_events(
         self,
         S: MapSamples,
@@ -295,6 +426,7 @@ class _Tracer:
         events: list[_Event],
         new_loop: list[int],
         new_s: list[float],
+        jumps: list[_Jump],
     ) -> None:
         cfg = self.cfg
         length = self.L[lp]
@@ -348,11 +480,22 @@ class _Tracer:
         apart |= self._partner_over_corner(S, idx, nxt, same_loop) & ~crosses
         jump = cand & (gap > cfg.tol) & ((ratio > 3.0 * beside + 1.0) | apart)
         split = jump & (ds > cfg.eps_s)
-        # split suspicious steps in eight: fewer rounds of (overhead-bound) evaluation
+        # a jump between two distinct elements: bracket the point where they tie (a few
+        # times per pair at most: a step may hold more than one event)
+        own = S.element[idx]
+        for j in np.nonzero(split & (pe0 != pe1) & (pe0 >= 0) & (pe1 >= 0))[0]:
+            key = (lp, int(own[j]), int(pe0[j]), int(pe1[j]))
+            tries = self.root_tries.get(key, 0)
+            if tries < 3:
+                self.root_tries[key] = tries + 1
+                jumps.append(_Jump(lp, float(s0[j]), float(ds[j]), int(pe0[j]), int(pe1[j])))
+                split[j] = False
+        # split other suspicious steps in eight: fewer rounds of (overhead-bound) evaluation
         frac = np.arange(1, 8) / 8.0
         pts = (s0[split, None] + ds[split, None] * frac[None, :]).ravel()
         new_loop += [lp] * len(pts)
         new_s += list(pts)
+        split |= jump & (ds > cfg.eps_s)
         centre = S.centre
         for j in np.nonzero(jump & ~split)[0]:
             i0, i1 = idx[j], nxt[j]
@@ -370,6 +513,73 @@ class _Tracer:
             events.append(
                 _Event(lp, s0[j], s0[j] + ds[j], NodeKind.CURVATURE_CENTRE, c, r, [(ei, t, p)])
             )
+
+
+@dataclass(frozen=True)
+class _Jump:
+    """A step ``[s0, s0 + ds]`` of a loop over which the partner jumps from element
+    ``e0`` to element ``e1``."""
+
+    loop: int
+    s0: float
+    ds: float
+    e0: int
+    e1: int
+
+
+def _complete_feet(tr: _Tracer, S: MapSamples, events: list[_Event], width: float) -> list[_Event]:
+    """A branch point found at one of its footpoints is an event at each of the others
+    too. Where a partner crosses a nearly flat convex corner it moves by less than the
+    tolerance, which the jump test does not see, while the corner's spoke is found from
+    its two sides: the foot across from the corner gets its event here. A foot within
+    ``width`` (on the loop coordinate) of an event of its loop is covered; so is a foot
+    next to a sample whose disk is the osculating one (where the branch point's disk
+    osculates too, at a curvature-centre end point, the other events rule)."""
+    C = tr.cands
+    bps = [e for e in events if e.kind is NodeKind.BRANCH_POINT]
+    feet = [(e, k) for e in bps for k, f in enumerate(e.feet) if f[0] >= 0]
+    if not feet:
+        return events
+    el = np.array([e.feet[k][0] for e, k in feet], dtype=np.int64)
+    par = np.array([e.feet[k][1] for e, k in feet])
+    a, b = C.el_a[el], C.el_b[el]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = np.clip(np.where(b != a, (par - a) / (b - a), 0.0), 0.0, 1.0)
+    s_foot = C.el_s0[el] + f * C.el_len[el]
+    loops = C.el_loop[el]
+    covered = np.zeros(len(feet), dtype=bool)
+    for lp in np.unique(loops):
+        length = tr.L[lp]
+        evs = [e for e in events if e.loop == lp]
+        q = np.nonzero(loops == lp)[0]
+        if not evs:
+            continue
+        lo = np.array([e.s_lo for e in evs]) % length
+        ext = np.array([e.s_hi - e.s_lo for e in evs]) % length
+        ext = np.where([e.s_hi - e.s_lo >= length for e in evs], length, ext)
+        lo = np.concatenate([lo - length, lo, lo + length])
+        hi = lo + np.tile(ext, 3)
+        order = np.argsort(lo)
+        lo, hi = lo[order], np.maximum.accumulate(hi[order])
+        sq = np.mod(s_foot[q], length)
+        j = np.searchsorted(lo, sq + width, side="right") - 1
+        covered[q] = (j >= 0) & (hi[np.maximum(j, 0)] >= sq - width)
+        on = np.nonzero(S.loop == lp)[0]
+        if len(on):
+            on = on[np.argsort(S.s[on])]
+            k = np.searchsorted(S.s[on], sq)
+            covered[q] |= S.is_self[on[k % len(on)]] | S.is_self[on[(k - 1) % len(on)]]
+    added: list[_Event] = []
+    for i in np.nonzero(~covered)[0]:
+        e, k = feet[i]
+        own = [e.feet[k]] + [g for j, g in enumerate(e.feet) if j != k]
+        s_i = float(np.mod(s_foot[i], tr.L[loops[i]]))
+        added.append(_Event(int(loops[i]), s_i, s_i, NodeKind.BRANCH_POINT, e.point, e.radius, own))
+    # one event per uncovered foot even where several events name it
+    seen: dict[tuple[int, float], _Event] = {}
+    for ev in added:
+        seen.setdefault((ev.loop, round(ev.s_lo / max(width, 1e-300))), ev)
+    return events + list(seen.values())
 
 
 def _merge_nodes(events: list[_Event], radius: float) -> int:
@@ -475,14 +685,16 @@ def _locate(table: _LoopTable, s: FloatArray, length: float) -> tuple[IntArray, 
 def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings) -> MedialGraph:
     """Compute the medial graph of the boundary (see module docstring)."""
     tr = _Tracer(boundary, settings)
-    loop, s = _initial_samples(boundary, settings.spacing)
-    loop, s = _near_flat_corners(boundary, settings, loop, s)
-    S = tr.eval(loop, s)
+    S = tr.eval(*_initial_samples(boundary, settings.spacing))
+    loop, s = _near_flat_corners(boundary, settings, S)
+    if len(s):
+        S = MapSamples.concat([S, tr.eval(loop, s)])
     tol = settings.tol
     for _ in range(settings.max_fit_rounds):
         S, events, ok = tr.resolve(S)
         if not ok:
             raise ComputationError("medial axis events did not converge")
+        events = _complete_feet(tr, S, events, tol)
         intervals, tables = _intervals(S, events, tr.L)
         twin = _twins(S, intervals, tables, tr.L)
         flat = _unresolved_corners(intervals, twin)
@@ -491,8 +703,8 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
             intervals, tables = _intervals(S, events, tr.L)
             twin = _twins(S, intervals, tables, tr.L)
         n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
-        kept = [_thin(S, iv, 1e-2 * tol, 0.5 * tol) for iv in _dedupe(intervals, twin)]
-        added = _missing_fit(tr, S, kept, tol)
+        kept = _thin(S, _dedupe(intervals, twin), 1e-2 * tol, 0.5 * tol)
+        added = _missing_fit(tr, S, kept, tol) + _fill_empty(tr, kept)
         if not added:
             return _assemble(tr, frame, tol, S, events, n_nodes, kept)
         S = MapSamples.concat([S, *added])
@@ -502,18 +714,26 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
 def _twins(
     S: MapSamples, intervals: list[_Interval], tables: dict[int, _LoopTable], L: FloatArray
 ) -> IntArray:
-    """For each interval, the interval its middle sample's partner lies in (-1: none)."""
-    mids = np.array(
-        [iv.samples[len(iv.samples) // 2] if len(iv.samples) else -1 for iv in intervals]
-    )
+    """For each interval, the interval its middle sample's partner lies in (-1: none).
+    Where that partner lies inside an event (a sample right next to a branch point has
+    its partner at the branch point's other foot), the samples either side of the middle
+    and then the end samples are asked in turn."""
     twin = np.full(len(intervals), -1, dtype=np.int64)
-    has = np.nonzero(mids >= 0)[0]
-    p_loop, p_s = S.partner_loop[mids[has]], S.partner_s[mids[has]]
-    for lp, table in tables.items():
-        sel = np.nonzero(p_loop == lp)[0]
-        if len(sel):
-            k, _ = _locate(table, p_s[sel], L[lp])
-            twin[has[sel]] = np.where(k >= 0, table.first + k, -1)
+    count = np.array([len(iv.samples) for iv in intervals])
+    for rank in range(4):
+        pos = [count // 2, (count - 1) // 2, np.zeros_like(count), count - 1][rank]
+        ask = np.nonzero((twin < 0) & (count > 0))[0]
+        if rank and len(ask) == 0:
+            break
+        mids = np.array([intervals[i].samples[pos[i]] for i in ask], dtype=np.int64)
+        if len(mids) == 0:
+            break
+        p_loop, p_s = S.partner_loop[mids], S.partner_s[mids]
+        for lp, table in tables.items():
+            sel = np.nonzero(p_loop == lp)[0]
+            if len(sel):
+                k, _ = _locate(table, p_s[sel], L[lp])
+                twin[ask[sel]] = np.where(k >= 0, table.first + k, -1)
     return twin
 
 
@@ -567,27 +787,51 @@ def _lower_side(
     return i < back[0] if len(intervals[back[0]].samples) == 0 else False
 
 
-def _thin(S: MapSamples, iv: _Interval, gap: float, cap: float) -> _Interval:
+def _thin(S: MapSamples, ivs: list[_Interval], gap: float, cap: float) -> list[_Interval]:
     """Drop samples closer than ``gap`` to the point before them (the bisection that
     isolates an event leaves clusters of them next to its node; interpolating through
     near-coincident points would make the spline oscillate), and samples inside a node
     merged from several nearby events (within 3 times their spread, at most ``cap``): the
     tiny branches between nearly coincident branch points (a slightly perturbed regular
-    polygon) would kink the spline there."""
-    if len(iv.samples) == 0:
-        return iv
-    c = S.centre[iv.samples]
-    prev = np.vstack([iv.start.point[None, :] if iv.start is not None else c[-1:], c[:-1]])
-    keep = np.linalg.norm(c - prev, axis=1) >= gap
-    if iv.start is None:
-        keep[0] = True
-    for ev in (iv.start, iv.end):
-        if ev is None:
+    polygon) would kink the spline there. All intervals at once."""
+    counts = np.array([len(iv.samples) for iv in ivs], dtype=np.int64)
+    if counts.sum() == 0:
+        return list(ivs)
+    smp = np.concatenate([iv.samples for iv in ivs]).astype(np.int64)
+    group = np.repeat(np.arange(len(ivs)), counts)
+    first = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    c = S.centre[smp]
+    prev = np.empty_like(c)
+    prev[1:] = c[:-1]
+    far = np.zeros((len(ivs), 2))
+    near = np.zeros((len(ivs), 2))  # (start, end) radius around each end node
+    start_pt, end_pt = np.zeros((len(ivs), 2)), np.zeros((len(ivs), 2))
+    closed = np.zeros(len(ivs), dtype=bool)
+    for k, iv in enumerate(ivs):
+        if counts[k] == 0:
             continue
-        near = max(gap, min(cap, 3.0 * ev.spread)) if ev is iv.end or ev.spread > 0 else 0.0
-        if near > 0:
-            keep &= np.linalg.norm(c - ev.point, axis=1) >= near
-    return _Interval(iv.loop, iv.start, iv.end, iv.samples[keep])
+        if iv.start is None:
+            closed[k] = True
+            far[k] = c[first[k] + counts[k] - 1]
+        else:
+            far[k] = iv.start.point
+            start_pt[k] = iv.start.point
+            if iv.start.spread > 0:
+                near[k, 0] = max(gap, min(cap, 3.0 * iv.start.spread))
+        if iv.end is not None:
+            end_pt[k] = iv.end.point
+            near[k, 1] = max(gap, min(cap, 3.0 * iv.end.spread))
+    has = counts > 0
+    prev[first[has]] = far[has]
+    keep = np.linalg.norm(c - prev, axis=1) >= gap
+    keep[first[has & closed]] = True
+    keep &= np.linalg.norm(c - start_pt[group], axis=1) >= near[group, 0]
+    keep &= np.linalg.norm(c - end_pt[group], axis=1) >= near[group, 1]
+    out = []
+    for k, iv in enumerate(ivs):
+        sl = slice(first[k], first[k] + counts[k])
+        out.append(_Interval(iv.loop, iv.start, iv.end, iv.samples[keep[sl]]))
+    return out
 
 
 def _branch_arrays(S: MapSamples, iv: _Interval) -> tuple[FloatArray, FloatArray]:
@@ -689,6 +933,28 @@ def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) 
     return [tr.eval(loop, s)] if len(s) else []
 
 
+def _fill_empty(tr: _Tracer, kept: list[_Interval]) -> list[MapSamples]:
+    """Samples inside kept intervals that have none between their two distinct nodes
+    (a short branch between nearby branch points, whose events are solved exactly and
+    whose bracketing samples hug the nodes): a quarter, half and three quarters of the
+    way, once per interval."""
+    loops: list[int] = []
+    ss: list[float] = []
+    for iv in kept:
+        if len(iv.samples) or iv.start is None or iv.end is None:
+            continue
+        if iv.start.node == iv.end.node:
+            continue
+        a, span = _span(iv.start, iv.end, tr.L[iv.loop])
+        key = (iv.loop, float(a), float(span), -1)
+        if span <= 4 * tr.cfg.eps_s or key in tr.fit_ok:
+            continue
+        tr.fit_ok.add(key)
+        loops += [iv.loop] * 3
+        ss += [a + span * f for f in (0.25, 0.5, 0.75)]
+    return [tr.eval(np.array(loops, dtype=np.int64), np.array(ss))] if ss else []
+
+
 def _knots_of(pts: FloatArray) -> FloatArray:
     d = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     u = np.concatenate([[0.0], np.cumsum(d)])
@@ -751,11 +1017,16 @@ def _assemble(
         if iv.start is not None:
             f0 = iv.start
             a_el, a_par, a_pt, b_el, b_par, b_pt = _pad(
-                (a_el, a_par, a_pt, b_el, b_par, b_pt), 0, S, smp, f0
+                (a_el, a_par, a_pt, b_el, b_par, b_pt), 0, S, smp, f0, nodes[f0.node].footpoints
             )
         if iv.end is not None:
             a_el, a_par, a_pt, b_el, b_par, b_pt = _pad(
-                (a_el, a_par, a_pt, b_el, b_par, b_pt), -1, S, smp, iv.end
+                (a_el, a_par, a_pt, b_el, b_par, b_pt),
+                -1,
+                S,
+                smp,
+                iv.end,
+                nodes[iv.end.node].footpoints,
             )
         if iv.start is None:
             a_el, a_par, a_pt, b_el, b_par, b_pt = (
@@ -780,8 +1051,11 @@ def _assemble(
     return MedialGraph(frame, tol, tuple(nodes), tuple(branches), elements)
 
 
-def _pad(arrs: tuple, where: int, S: MapSamples, smp: IntArray, ev: _Event) -> tuple:
-    """Footpoints at an end node: the nearest sample's footpoints moved to the node's."""
+def _pad(
+    arrs: tuple, where: int, S: MapSamples, smp: IntArray, ev: _Event, node_feet: tuple
+) -> tuple:
+    """Footpoints at an end node: a branch point's own footpoints on the two sides, a
+    convex vertex itself, otherwise the nearest sample's."""
     a_el, a_par, a_pt, b_el, b_par, b_pt = arrs
     if len(smp):
         j = smp[0] if where == 0 else smp[-1]
@@ -805,6 +1079,19 @@ def _pad(arrs: tuple, where: int, S: MapSamples, smp: IntArray, ev: _Event) -> t
         )
     if ev.kind is NodeKind.CONVEX_VERTEX:
         vals = (vals[0], vals[1], ev.point[None, :], vals[3], vals[4], ev.point[None, :])
+    elif len(smp) and ev.kind is NodeKind.BRANCH_POINT:
+        # the node's own footpoints (one list for all its branches, so that they end on
+        # identical feet): on each side, the one on the sample's element nearest the
+        # sample's foot (the nearest sample may be far from the node: the events are
+        # solved exactly); the sample's own where the node has none on that element
+        out_vals: list[NDArray[Any]] = list(vals)
+        for k in (0, 3):
+            el, pt = int(vals[k][0]), vals[k + 2][0]
+            same = [f for f in node_feet if f.element == el]
+            if same:
+                f = min(same, key=lambda f: float(np.linalg.norm(f.point_2d - pt)))
+                out_vals[k : k + 3] = [np.array([el]), np.array([f.param]), f.point_2d[None, :]]
+        vals = tuple(out_vals)  # type: ignore[assignment]
     out = []
     for x, v in zip((a_el, a_par, a_pt, b_el, b_par, b_pt), vals, strict=True):
         out.append(np.concatenate([v, x]) if where == 0 else np.concatenate([x, v]))

@@ -473,6 +473,11 @@ def _split(
     for cut in cuts:
         if cut[0] < 1e-9 or cut[0] > 1 - 1e-9:
             continue
+        if cut[1] == "level" and (
+            min(float(np.linalg.norm(cut[2] - ca[0])), float(np.linalg.norm(cut[2] - ca[-1])))
+            < 1e-2 * graph.tol
+        ):
+            continue  # the level passes through the end node itself (a threshold angle)
         if merged and cut[0] - merged[-1][0] < 1e-9:
             continue
         prev = merged[-1] if merged else None
