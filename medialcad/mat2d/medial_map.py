@@ -452,14 +452,53 @@ def _lines_pairs(
     c = b + np.where(np.isfinite(rho), rho, 0.0)[:, None] * n
     tf = _dot(c - o, d)
     lo, hi = C.line_lo[j], C.line_hi[j]
-    inside = np.isfinite(rho) & (tf >= lo) & (tf <= hi)
     el = C.lines[j]
+    rho, tf = _across_corner(C, b, n, own, j, el, rho, tf, tiny)
+    inside = np.isfinite(rho) & (tf >= lo) & (tf <= hi)
     f_lo = _f_values(o + lo[:, None] * d, b, n, tiny)
     f_hi = _f_values(o + hi[:, None] * d, b, n, tiny)
     end_val, low = _end_values(f_lo, f_hi, el, own, C, pen)
     val = np.where(inside, rho, end_val)
     par = np.where(inside, tf, np.where(low, lo, hi))
     return np.where(own == el, np.inf, val), par
+
+
+def _across_corner(
+    C: Candidates,
+    b: FloatArray,
+    n: FloatArray,
+    own: IntArray,
+    j: IntArray,
+    el: IntArray,
+    rho: FloatArray,
+    tf: FloatArray,
+    tiny: float,
+) -> tuple[FloatArray, FloatArray]:
+    """The disk tangent at ``b`` and at the line across the convex corner that ends
+    ``b``'s own line: by symmetry it touches the line as far from the vertex as ``b`` is,
+    ``rho = |b - V| / tan(turn / 2)``. Next to a nearly flat corner the distance of ``b``
+    to that line is below the noise that :func:`_lines_pairs` guards against, while the
+    corner's spoke is fed by exactly those points."""
+    at_lo, at_hi = C.touch[el, 0] == own, C.touch[el, 1] == own
+    sel = np.nonzero((at_lo | at_hi) & (C.kind[own] == LINE))[0]
+    if len(sel) == 0:
+        return rho, tf
+    k = j[sel]
+    o, d, nu = C.line_o[k], C.line_d[k], C.line_nu[k]
+    tv = np.where(at_lo[sel], C.line_lo[k], C.line_hi[k])
+    dl = np.linalg.norm(d, axis=1)
+    dist = np.linalg.norm(b[sel] - (o + tv[:, None] * d), axis=1)
+    ns = n[sel]
+    cross = np.abs(ns[:, 0] * nu[:, 1] - ns[:, 1] * nu[:, 0])
+    cosv = _dot(ns, nu)
+    # convex: the line lies ahead of b (its inward side holds b)
+    ok = (cross > 0) & (cosv > -1.0) & (_dot(b[sel] - o, nu) > -10.0 * tiny) & (dist > 10 * tiny)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r_sym = dist * (1.0 + cosv) / cross
+    rho, tf = rho.copy(), tf.copy()
+    rho[sel] = np.where(ok, r_sym, np.inf)
+    tf[sel] = np.where(ok, tv + np.where(at_lo[sel], 1.0, -1.0) * dist / dl, tf[sel])
+    return rho, tf
 
 
 def _circles_pairs(

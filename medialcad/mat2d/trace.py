@@ -112,8 +112,12 @@ def _near_flat_corners(
     for c in boundary.corners:
         if not 0 < c.turn < np.pi / 6:
             continue
-        # not closer than where the two sides are collinear within coordinate noise
-        lo = max(1e-10 * boundary.diag / c.turn, cfg.eps_s)
+        # not closer than where the two sides are collinear within coordinate noise,
+        # unless both are lines (their disks are solved by symmetry about the corner)
+        ea = boundary.element_at(c.loop, (c.s - 0.5 * cfg.eps_s) % boundary.loop_lengths[c.loop])
+        eb = boundary.element_at(c.loop, (c.s + 0.5 * cfg.eps_s) % boundary.loop_lengths[c.loop])
+        lines = all(e.piece is not None and isinstance(e.piece.curve, LineCurve) for e in (ea, eb))
+        lo = 1e-2 * cfg.eps_s if lines else max(1e-10 * boundary.diag / c.turn, cfg.eps_s)
         if lo >= cfg.spacing:
             continue
         a, b = np.searchsorted(loops, [c.loop, c.loop + 1])
@@ -161,6 +165,13 @@ class _Tracer:
         self.convex = [
             (c.loop, c.s % self.L[c.loop], c.point) for c in boundary.corners if c.turn > 0
         ]
+        # consecutive elements meeting at a convex corner (not a smooth join)
+        at_corner = {(c.loop, c.s) for c in boundary.corners if c.turn > 0}
+        self.corner_pairs: set[frozenset[int]] = set()
+        for e in els:
+            if (e.loop, e.s0 + e.length) in at_corner:
+                k = self.loop_first[e.loop] + (self.elem_pos[e.index] + 1) % self.loop_count[e.loop]
+                self.corner_pairs.add(frozenset((e.index, int(k))))
 
     def fit(self, values: FloatArray) -> Spline:
         """:func:`fit_spline` through ``values``, remembered (the fit check and the
@@ -1000,7 +1011,14 @@ def _assemble(
         feet: list[Footpoint] = []
         for e in evs:
             for el, par, fp in e.feet:
-                if all(np.linalg.norm(f.point_2d - fp) > tol for f in feet):
+                # one foot per element within tol (events of one node found it apart);
+                # feet on distinct elements are distinct (a nearly flat corner's spoke
+                # touches both its sides closer than tol), unless they coincide
+                if all(
+                    np.linalg.norm(f.point_2d - fp)
+                    > (tol if _one_foot(tr, f.element, el) else 1e-6 * tol)
+                    for f in feet
+                ):
                     feet.append(Footpoint(el, par, np.asarray(fp, dtype=float)))
         nodes.append(Node(ni, kind, pt, frame.to_3d(pt), r, tuple(feet)))
     branches: list[Branch] = []
@@ -1049,6 +1067,18 @@ def _assemble(
             )
         )
     return MedialGraph(frame, tol, tuple(nodes), tuple(branches), elements)
+
+
+def _one_foot(tr: _Tracer, a: int, b: int) -> bool:
+    """Whether feet on elements ``a`` and ``b`` within tol of each other are one foot:
+    the same element, or two meeting smoothly. Feet on two sides of a convex corner are
+    two (a nearly flat corner's spoke touches both closer than tol)."""
+    if a == b:
+        return True
+    if a < 0 or b < 0:
+        return False
+    adjacent = bool(tr._adjacent(np.array([a]), np.array([b]))[0])
+    return adjacent and frozenset((a, b)) not in tr.corner_pairs
 
 
 def _pad(
