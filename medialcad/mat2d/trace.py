@@ -109,15 +109,16 @@ def _near_flat_corners(
     add_s: list[FloatArray] = []
     order = np.lexsort((S.s, S.loop))
     loops, ss = S.loop[order], S.s[order]
+    line_end = _line_line_corners(boundary)
     for c in boundary.corners:
         if not 0 < c.turn < np.pi / 6:
             continue
         # not closer than where the two sides are collinear within coordinate noise,
         # unless both are lines (their disks are solved by symmetry about the corner)
-        ea = boundary.element_at(c.loop, (c.s - 0.5 * cfg.eps_s) % boundary.loop_lengths[c.loop])
-        eb = boundary.element_at(c.loop, (c.s + 0.5 * cfg.eps_s) % boundary.loop_lengths[c.loop])
-        lines = all(e.piece is not None and isinstance(e.piece.curve, LineCurve) for e in (ea, eb))
-        lo = 1e-2 * cfg.eps_s if lines else max(1e-10 * boundary.diag / c.turn, cfg.eps_s)
+        if (c.loop, c.s) in line_end:
+            lo = 1e-2 * cfg.eps_s
+        else:
+            lo = max(1e-10 * boundary.diag / c.turn, cfg.eps_s)
         if lo >= cfg.spacing:
             continue
         a, b = np.searchsorted(loops, [c.loop, c.loop + 1])
@@ -135,6 +136,19 @@ def _near_flat_corners(
     if not add_s:
         return np.zeros(0, dtype=np.int64), np.zeros(0)
     return np.concatenate(add_l), np.concatenate(add_s)
+
+
+def _line_line_corners(boundary: Boundary) -> set[tuple[int, float]]:
+    """``(loop, s)`` of the joints between two consecutive lines."""
+    by_loop: dict[int, list[Any]] = {}
+    for e in boundary.elements:
+        by_loop.setdefault(e.loop, []).append(e)
+    out = set()
+    for lp, els in by_loop.items():
+        for a, b in zip(els, els[1:] + els[:1], strict=True):
+            if all(e.piece is not None and isinstance(e.piece.curve, LineCurve) for e in (a, b)):
+                out.add((lp, a.s0 + a.length))
+    return out
 
 
 def _cyc(d: FloatArray, length: FloatArray) -> FloatArray:
@@ -538,12 +552,15 @@ class _Jump:
     e1: int
 
 
-def _complete_feet(tr: _Tracer, S: MapSamples, events: list[_Event], width: float) -> list[_Event]:
+def _complete_feet(
+    tr: _Tracer, S: MapSamples, events: list[_Event], width: float, radius: float
+) -> list[_Event]:
     """A branch point found at one of its footpoints is an event at each of the others
     too. Where a partner crosses a nearly flat convex corner it moves by less than the
     tolerance, which the jump test does not see, while the corner's spoke is found from
     its two sides: the foot across from the corner gets its event here. A foot within
-    ``width`` (on the loop coordinate) of an event of its loop is covered; so is a foot
+    ``width`` (on the loop coordinate) of an event of its loop at the same point (within
+    ``radius``, the node merge radius) is covered; so is a foot
     next to a sample whose disk is the osculating one (where the branch point's disk
     osculates too, at a curvature-centre end point, the other events rule)."""
     C = tr.cands
@@ -559,6 +576,7 @@ def _complete_feet(tr: _Tracer, S: MapSamples, events: list[_Event], width: floa
     s_foot = C.el_s0[el] + f * C.el_len[el]
     loops = C.el_loop[el]
     covered = np.zeros(len(feet), dtype=bool)
+    node_pt = np.array([e.point for e, _ in feet])
     for lp in np.unique(loops):
         length = tr.L[lp]
         evs = [e for e in events if e.loop == lp]
@@ -568,13 +586,25 @@ def _complete_feet(tr: _Tracer, S: MapSamples, events: list[_Event], width: floa
         lo = np.array([e.s_lo for e in evs]) % length
         ext = np.array([e.s_hi - e.s_lo for e in evs]) % length
         ext = np.where([e.s_hi - e.s_lo >= length for e in evs], length, ext)
+        pts = np.tile(np.array([e.point for e in evs]), (3, 1))
         lo = np.concatenate([lo - length, lo, lo + length])
         hi = lo + np.tile(ext, 3)
         order = np.argsort(lo)
-        lo, hi = lo[order], np.maximum.accumulate(hi[order])
+        lo, hi, pts = lo[order], hi[order], pts[order]
+        reach = float(np.max(hi - lo))
         sq = np.mod(s_foot[q], length)
-        j = np.searchsorted(lo, sq + width, side="right") - 1
-        covered[q] = (j >= 0) & (hi[np.maximum(j, 0)] >= sq - width)
+        # events of this loop near the foot; covered by one of the same branch point
+        # (another branch point's event can lie within tol on a dense polygon)
+        j0 = np.searchsorted(lo, sq - width - reach, side="left")
+        j1 = np.searchsorted(lo, sq + width, side="right")
+        count = np.maximum(j1 - j0, 0)
+        row = np.repeat(np.arange(len(q)), count)
+        ev = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count)
+        ev += np.repeat(j0, count)
+        hit = (hi[ev] >= sq[row] - width) & (
+            np.linalg.norm(pts[ev] - node_pt[q[row]], axis=1) <= radius
+        )
+        covered[q] = np.bincount(row[hit], minlength=len(q)) > 0
         on = np.nonzero(S.loop == lp)[0]
         if len(on):
             on = on[np.argsort(S.s[on])]
@@ -586,11 +616,17 @@ def _complete_feet(tr: _Tracer, S: MapSamples, events: list[_Event], width: floa
         own = [e.feet[k]] + [g for j, g in enumerate(e.feet) if j != k]
         s_i = float(np.mod(s_foot[i], tr.L[loops[i]]))
         added.append(_Event(int(loops[i]), s_i, s_i, NodeKind.BRANCH_POINT, e.point, e.radius, own))
-    # one event per uncovered foot even where several events name it
-    seen: dict[tuple[int, float], _Event] = {}
-    for ev in added:
-        seen.setdefault((ev.loop, round(ev.s_lo / max(width, 1e-300))), ev)
-    return events + list(seen.values())
+    # one event per uncovered foot even where several events of its branch point name it
+    kept: list[_Event] = []
+    for ev in sorted(added, key=lambda e: (e.loop, e.s_lo)):
+        if not any(
+            k.loop == ev.loop
+            and abs(k.s_lo - ev.s_lo) <= width
+            and np.linalg.norm(k.point - ev.point) <= radius
+            for k in kept[-8:]
+        ):
+            kept.append(ev)
+    return events + kept
 
 
 def _merge_nodes(events: list[_Event], radius: float) -> int:
@@ -705,7 +741,7 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
         S, events, ok = tr.resolve(S)
         if not ok:
             raise ComputationError("medial axis events did not converge")
-        events = _complete_feet(tr, S, events, tol)
+        events = _complete_feet(tr, S, events, tol, max(tol, 10 * settings.eps_s))
         intervals, tables = _intervals(S, events, tr.L)
         twin = _twins(S, intervals, tables, tr.L)
         flat = _unresolved_corners(intervals, twin)
