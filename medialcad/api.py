@@ -189,9 +189,11 @@ def _check_simple(boundary: Boundary) -> None:
 
     Polylines of every edge are tested pairwise where their segments are close enough
     to meet (a KD-tree on segment midpoints), for proper crossings between different
-    edges.
+    edges and between segments of one edge that do not follow each other.
     """
     from scipy.spatial import cKDTree
+
+    from medialcad.mat2d.curves import LineCurve
 
     a_list, b_list, idx_list = [], [], []
     sagitta, chord = 1e-7 * boundary.diag, boundary.diag / 400
@@ -200,8 +202,11 @@ def _check_simple(boundary: Boundary) -> None:
             continue
         # enough points that the chords stay within ``sagitta`` of the curve: thin walls
         # between arcs must not look like crossings
-        _, _, k = boundary.frame_at(e, np.linspace(e.piece.t0, e.piece.t1, 65))
-        kmax = float(np.abs(k).max())
+        if isinstance(e.piece.curve, LineCurve):
+            kmax = 0.0
+        else:
+            _, _, k = boundary.frame_at(e, np.linspace(e.piece.t0, e.piece.t1, 65))
+            kmax = float(np.abs(k).max())
         # ... and short enough that the KD-tree's search radius stays local
         n = int(
             np.clip(
@@ -221,7 +226,14 @@ def _check_simple(boundary: Boundary) -> None:
     if len(pairs) == 0:
         return
     i, j = pairs[:, 0], pairs[:, 1]
-    keep = idx[i] != idx[j]
+    # segments of different edges, or of one edge that are not neighbours (a curve
+    # crossing itself; the first and last segments of a closed edge are neighbours)
+    first = np.searchsorted(idx, idx, side="left")
+    last = np.searchsorted(idx, idx, side="right") - 1
+    step = np.abs(i - j)
+    wrap = (np.minimum(i, j) == first[i]) & (np.maximum(i, j) == last[i])
+    closed = np.linalg.norm(a[first[i]] - b[last[i]], axis=1) <= 1e-9 * boundary.diag
+    keep = (idx[i] != idx[j]) | ((step > 1) & ~(wrap & closed))
     i, j = i[keep], j[keep]
     u = a[j] - a[i]
     den = d[i, 0] * d[j, 1] - d[i, 1] * d[j, 0]

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 import cadquery as cq
+import numpy as np
 import pytest
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
 from OCP.gp import gp_Pln, gp_Pnt
@@ -124,3 +125,22 @@ def test_edge_off_the_plane_is_refused() -> None:
     with pytest.raises((medialcad.NonPlanarFaceError, medialcad.InputError)) as info:
         medialcad.medial_axis_2d(face)
     assert "\n" not in str(info.value)
+
+
+def test_self_crossing_boundary_with_many_edges_is_refused() -> None:
+    """Above ``BREPCHECK_MAX_EDGES`` edges OCC's (quadratic) face check is skipped and the
+    crossings are found by medialcad's own check: a pentagram traced by 395 short edges
+    (nonzero area, every star point a crossing) is refused as before."""
+    from medialcad.occ.face2d import BREPCHECK_MAX_EDGES
+
+    ang = np.pi / 2 + 4 * np.pi * np.arange(5) / 5
+    tips = list(10 * np.column_stack([np.cos(ang), np.sin(ang)]))
+    pts = [
+        tuple(a + t * (b - a))
+        for a, b in zip(tips, tips[1:] + tips[:1], strict=True)
+        for t in np.linspace(0.0, 1.0, 80)[:-1]
+    ]
+    assert len(pts) > BREPCHECK_MAX_EDGES
+    face = cq.Face.makeFromWires(cq.Workplane().polyline(pts).close().val())
+    with pytest.raises(SelfIntersectingBoundaryError):
+        medialcad.medial_axis_2d(face)

@@ -39,7 +39,13 @@ from medialcad.mat2d.graph import (
     Node,
     NodeKind,
 )
-from medialcad.mat2d.medial_map import MapSamples, build_candidates, evaluate, pair_minima
+from medialcad.mat2d.medial_map import (
+    LINE,
+    MapSamples,
+    build_candidates,
+    evaluate,
+    pair_minima,
+)
 from medialcad.mat2d.spline import Spline, fit_spline
 
 __all__ = ["TraceSettings", "trace_medial_graph"]
@@ -179,13 +185,14 @@ class _Tracer:
         self.convex = [
             (c.loop, c.s % self.L[c.loop], c.point) for c in boundary.corners if c.turn > 0
         ]
-        # consecutive elements meeting at a convex corner (not a smooth join)
+        # consecutive elements meeting smoothly (not at a convex corner), low index first
         at_corner = {(c.loop, c.s) for c in boundary.corners if c.turn > 0}
-        self.corner_pairs: set[frozenset[int]] = set()
+        self.smooth_pairs: set[tuple[int, int]] = set()
         for e in els:
-            if (e.loop, e.s0 + e.length) in at_corner:
+            if (e.loop, e.s0 + e.length) not in at_corner:
                 k = self.loop_first[e.loop] + (self.elem_pos[e.index] + 1) % self.loop_count[e.loop]
-                self.corner_pairs.add(frozenset((e.index, int(k))))
+                if k != e.index:
+                    self.smooth_pairs.add((min(e.index, int(k)), max(e.index, int(k))))
 
     def fit(self, values: FloatArray) -> Spline:
         """:func:`fit_spline` through ``values``, remembered (the fit check and the
@@ -376,8 +383,9 @@ class _Tracer:
                 # and a geometric cluster either side down to a tenth of the tolerance,
                 # as bisection would leave: the branches ending there are sampled
                 # densely next to their node, where feet and centres turn fastest
+                # (not between lines: those branches are straight)
                 steps = w[i] * 0.125 ** np.arange(1, 40)
-                steps = steps[steps > 0.1 * self.cfg.tol]
+                steps = steps[(steps > 0.1 * self.cfg.tol) & (not jumps[i].lines)]
                 pts = np.concatenate(
                     [[x[i] - delta[i], x[i] + delta[i]], x[i] - steps, x[i] + steps]
                 )
@@ -513,7 +521,10 @@ class _Tracer:
             tries = self.root_tries.get(key, 0)
             if tries < 3:
                 self.root_tries[key] = tries + 1
-                jumps.append(_Jump(lp, float(s0[j]), float(ds[j]), int(pe0[j]), int(pe1[j])))
+                lines = bool(
+                    np.all(self.cands.kind[[own[j], S.element[nxt[j]], pe0[j], pe1[j]]] == LINE)
+                )
+                jumps.append(_Jump(lp, float(s0[j]), float(ds[j]), int(pe0[j]), int(pe1[j]), lines))
                 split[j] = False
         # split other suspicious steps in eight: fewer rounds of (overhead-bound) evaluation
         frac = np.arange(1, 8) / 8.0
@@ -550,6 +561,7 @@ class _Jump:
     ds: float
     e0: int
     e1: int
+    lines: bool = False  # the own elements at both ends and e0, e1 are all lines
 
 
 def _complete_feet(
@@ -921,6 +933,9 @@ def _fit_check(tr: _Tracer, S: MapSamples, iv: _Interval) -> _FitCheck | None:
     )
     if key in tr.fit_ok:
         return None
+    if _straight(tr, S, iv.samples):
+        tr.fit_ok.add(key)
+        return None
     length = tr.L[iv.loop]
     s = S.s[iv.samples]
     if iv.start is None:
@@ -938,6 +953,17 @@ def _fit_check(tr: _Tracer, S: MapSamples, iv: _Interval) -> _FitCheck | None:
     u = _knots_of(pts)
     mids = s_ext[:-1][ok] + 0.5 * d[ok]
     return _FitCheck(key, iv.loop, spline, mids, u[:-1][ok], u[1:][ok])
+
+
+def _straight(tr: _Tracer, S: MapSamples, smp: IntArray) -> bool:
+    """Whether every sample of a branch is equidistant from the same two lines: its
+    centres lie on their bisector and the radius is linear along it, which the
+    interpolating spline reproduces exactly (nothing to check)."""
+    own, other = S.element[smp], S.partner_element[smp]
+    if np.any(own != own[0]) or np.any(other != other[0]) or np.any(S.is_self[smp]):
+        return False
+    kind = tr.cands.kind
+    return bool(kind[own[0]] == LINE and other[0] >= 0 and kind[other[0]] == LINE)
 
 
 def _nearest_on_spline(c: _FitCheck, centre: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -1064,7 +1090,15 @@ def _assemble(
             extent = np.linalg.norm(pts - iv.start.point, axis=1).max()
             if extent <= 4 * tol:  # a degenerate stretch between events of one node
                 continue
-        spline = tr.fit(np.column_stack([pts, rad]))
+        values = np.column_stack([pts, rad])
+        if len(values) > 4 and _straight(tr, S, iv.samples):
+            # collinear, radius linear along the line, chord-length parameters
+            # proportional to arc length: the cubic through all the points is the line
+            w = np.linspace(0.0, 1.0, 4)[:, None]
+            coeffs = (1 - w) * values[0] + w * values[-1]
+            spline = Spline(np.repeat([0.0, 1.0], 4), coeffs, 3)
+        else:
+            spline = tr.fit(values)
         smp = iv.samples
         a_el, a_par, a_pt = S.element[smp], S.param[smp], S.foot[smp]
         b_el, b_par, b_pt = S.partner_element[smp], S.partner_param[smp], S.partner_point[smp]
@@ -1113,8 +1147,7 @@ def _one_foot(tr: _Tracer, a: int, b: int) -> bool:
         return True
     if a < 0 or b < 0:
         return False
-    adjacent = bool(tr._adjacent(np.array([a]), np.array([b]))[0])
-    return adjacent and frozenset((a, b)) not in tr.corner_pairs
+    return (min(a, b), max(a, b)) in tr.smooth_pairs
 
 
 def _pad(

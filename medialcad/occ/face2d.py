@@ -78,7 +78,41 @@ def _vec(d: Any) -> np.ndarray:
     return np.array([d.X(), d.Y(), d.Z()])
 
 
+BREPCHECK_MAX_EDGES = 300
+"""OCC's face check is quadratic in the edges (20 s for 10,000): above this many, the
+wires' connectivity is checked here and crossings by ``medialcad.api._check_simple``."""
+
+
+def _count_edges(face: TopoDS_Face) -> int:
+    exp = TopExp_Explorer(face, TopAbs_EDGE)
+    n = 0
+    while exp.More():
+        n += 1
+        exp.Next()
+    return n
+
+
+def _check_connected(face: TopoDS_Face) -> None:
+    """Every edge of every wire is reached by walking the wire (a disconnected wire
+    leaves some out)."""
+    wexp = TopExp_Explorer(face, TopAbs_WIRE)
+    while wexp.More():
+        wire = TopoDS.Wire_s(wexp.Current())
+        listed = _count_edges(wire)
+        walked = 0
+        it = BRepTools_WireExplorer(wire, face)
+        while it.More():
+            walked += 1
+            it.Next()
+        if walked != listed:
+            raise OpenWireError("a boundary loop of the face is not connected")
+        wexp.Next()
+
+
 def _check_valid(face: TopoDS_Face) -> None:
+    if _count_edges(face) > BREPCHECK_MAX_EDGES:
+        _check_connected(face)
+        return
     ana = BRepCheck_Analyzer(face, True)
     if ana.IsValid():
         return
