@@ -32,8 +32,9 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
 from OCP.BRepClass import BRepClass_FaceClassifier
 from OCP.BRepExtrema import BRepExtrema_DistShapeShape, BRepExtrema_SupportType
 from OCP.GCPnts import GCPnts_AbscissaPoint
-from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Ellipse, GeomAbs_Line, GeomAbs_Plane
+from OCP.GeomAbs import GeomAbs_C1, GeomAbs_Circle, GeomAbs_Ellipse, GeomAbs_Line, GeomAbs_Plane
 from OCP.gp import gp_Pnt, gp_Vec
+from OCP.TColStd import TColStd_Array1OfReal
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_OUT, TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
@@ -188,7 +189,7 @@ class FaceBoundary:
         self._build_samples()
         self._edge_sign = [self._inward_sign(i) for i in range(len(self.edges))]
         self.convex_corners = np.array(
-            [v for v in self.vertices if self._is_convex_corner(v)]
+            [v for v in self.vertices if self._is_convex_corner(v)] + self._convex_kinks()
         ).reshape(-1, 3)
 
     # -- primitives
@@ -448,6 +449,29 @@ class FaceBoundary:
         b, tan = self._tangent(i, t)
         n = np.cross(self.normal, tan)
         return b, self._edge_sign[i] * n / np.linalg.norm(n)
+
+    def _convex_kinks(self) -> list[FloatArray]:
+        """Convex corners inside an edge: where OCC's adaptor says the curve is not C1 (a
+        B-spline knot of multiplicity >= its degree) and the tangents either side differ."""
+        out = []
+        for i, c in enumerate(self.curves):
+            n = c.NbIntervals(GeomAbs_C1)
+            if n < 2:
+                continue
+            arr = TColStd_Array1OfReal(1, n + 1)
+            c.Intervals(arr, GeomAbs_C1)
+            h = 1e-9 * (c.LastParameter() - c.FirstParameter())
+            for k in range(2, n + 1):
+                t = arr.Value(k)
+                p, before = self._tangent(i, t - h)
+                _, after = self._tangent(i, t + h)
+                d0, d1 = -before / np.linalg.norm(before), after / np.linalg.norm(after)
+                bis = d0 + d1
+                if np.linalg.norm(bis) < 1e-7 or abs(d0 @ d1 + 1.0) < 1e-12:
+                    continue  # a smooth join
+                if self.inside(p + min(1e-4 * self.diag, 1e-3) * bis / np.linalg.norm(bis)):
+                    out.append(p)
+        return out
 
     def _is_convex_corner(self, v: FloatArray) -> bool:
         """A vertex is a convex corner iff the probe on the bisector of the two edge directions

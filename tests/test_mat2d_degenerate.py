@@ -145,3 +145,62 @@ def test_bezier_end_with_zero_derivative() -> None:
 def test_bad_tolerance_is_an_input_error(tol: Any) -> None:
     with pytest.raises(medialcad.InputError, match="tol"):
         medialcad.medial_axis_2d(_poly([(0, 0), (1, 0), (1, 1)]), tol=tol)
+
+
+def _bspline_face(poles: list[tuple[float, float]], degree: int, mults: list[int]) -> Any:
+    """A face bounded by one closed (clamped, non-periodic) B-spline edge."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
+    from OCP.Geom import Geom_BSplineCurve
+    from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
+
+    arr = TColgp_Array1OfPnt(1, len(poles))
+    for i, (x, y) in enumerate(poles, start=1):
+        arr.SetValue(i, gp_Pnt(x, y, 0))
+    knots = TColStd_Array1OfReal(1, len(mults))
+    mult = TColStd_Array1OfInteger(1, len(mults))
+    for i, m in enumerate(mults, start=1):
+        knots.SetValue(i, float(i - 1))
+        mult.SetValue(i, m)
+    curve = Geom_BSplineCurve(arr, knots, mult, degree)
+    wire = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(curve).Edge()).Wire()
+    return BRepBuilderAPI_MakeFace(wire, True).Face()
+
+
+L_SHAPE = [(0, 0), (10, 0), (10, 4), (4, 4), (4, 10), (0, 10)]
+
+
+def test_polyline_exported_as_one_degree_1_bspline_edge() -> None:
+    """DXF/SVG imports write a polygon as one degree-1 B-spline edge: its knots are
+    corners (5 convex, 1 reflex) and its medial axis is the polygon's, node for node
+    (the corners inside the edge were smooth joins to the tracer before)."""
+    face = _bspline_face([*L_SHAPE, L_SHAPE[0]], 1, [2, 1, 1, 1, 1, 1, 2])
+    mat = medialcad.medial_axis_2d(face)
+    ref = medialcad.medial_axis_2d(_poly(L_SHAPE))
+    assert len(mat.nodes) == len(ref.nodes) and len(mat.branches) == len(ref.branches)
+    assert sum(n.kind is CV for n in mat.nodes) == 5
+    got = np.array(sorted(tuple(np.round(n.point[:2], 6)) for n in mat.nodes))
+    want = np.array(sorted(tuple(np.round(n.point[:2], 6)) for n in ref.nodes))
+    assert np.abs(got - want).max() <= mat.tol
+    assert cycle_rank(mat) == (1, 0)
+    _check_oracles(face, mat)
+
+
+def test_cubic_bspline_edge_with_c0_and_c1_knots() -> None:
+    """A closed cubic B-spline edge with a knot of multiplicity 3 (a corner) and one of
+    multiplicity 2 (only C1): it is read (the C1 knot made the curvature evaluation
+    refuse the curve: "internal failure"), the corner is a convex vertex, the oracles
+    hold."""
+    poles = [(0, 0), (4, -1), (8, 0), (10, 3), (9, 6), (6, 8), (3, 7), (1, 5), (0, 2), (0, 0)]
+    face = _bspline_face(poles, 3, [4, 2, 3, 1, 4])
+    mat = medialcad.medial_axis_2d(face)
+    assert cycle_rank(mat) == (1, 0)
+    from OCP.BRep import BRep_Tool
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    edge = TopoDS.Edge_s(TopExp_Explorer(face, TopAbs_EDGE).Current())
+    at = BRep_Tool.Curve_s(edge, 0.0, 0.0).Value(2.0)  # the C0 knot is u = 2
+    corner = np.array([at.X(), at.Y()])
+    assert any(n.kind is CV and np.linalg.norm(n.point[:2] - corner) < 1e-9 for n in mat.nodes)
+    _check_oracles(face, mat)

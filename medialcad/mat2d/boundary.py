@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from medialcad.errors import DegenerateFaceError, OpenWireError
-from medialcad.mat2d.curves import Curve
+from medialcad.mat2d.curves import Curve, LineCurve
 
 __all__ = ["Boundary", "EdgePiece", "build_boundary"]
 
@@ -148,6 +148,8 @@ def _reverse(loop: list[EdgePiece]) -> list[EdgePiece]:
 
 
 def _piece_length(p: EdgePiece) -> float:
+    if isinstance(p.curve, LineCurve):
+        return float(abs(p.t1 - p.t0) * np.linalg.norm(p.curve.direction))
     t = np.linspace(p.t0, p.t1, 257)
     pts = p.curve.point(t)
     return float(np.sum(np.linalg.norm(np.diff(pts, axis=0), axis=1)))

@@ -99,14 +99,11 @@ class NurbsCurve(Curve):
     degree: int
     period: float | None = None
 
-    def _splines(self) -> tuple[BSpline, BSpline | None, BSpline | None]:
+    def _spline(self) -> BSpline:
         cache = self.__dict__.get("_cache")
         if cache is None:
             hom = np.column_stack([self.poles * self.weights[:, None], self.weights])
-            a = BSpline(self.knots, hom, self.degree, extrapolate=True)
-            a1 = a.derivative(1) if self.degree >= 1 else None
-            a2 = a.derivative(2) if self.degree >= 2 else None
-            cache = (a, a1, a2)
+            cache = BSpline(self.knots, hom, self.degree, extrapolate=True)
             object.__setattr__(self, "_cache", cache)
         return cache
 
@@ -115,10 +112,12 @@ class NurbsCurve(Curve):
         if self.period is not None:
             lo = self.knots[self.degree]
             tt = lo + np.mod(tt - lo, self.period)
-        a, a1, a2 = self._splines()
+        a = self._spline()
+        # derivatives evaluated directly (one-sided at a knot of high multiplicity:
+        # BSpline.derivative refuses a C1 knot of a cubic)
         h = a(tt)
-        h1 = a1(tt) if a1 is not None else np.zeros_like(h)
-        h2 = a2(tt) if a2 is not None else np.zeros_like(h)
+        h1 = a(tt, nu=1) if self.degree >= 1 else np.zeros_like(h)
+        h2 = a(tt, nu=2) if self.degree >= 2 else np.zeros_like(h)
         w, w1, w2 = h[:, 2:3], h1[:, 2:3], h2[:, 2:3]
         p = h[:, :2] / w
         d1 = (h1[:, :2] - w1 * p) / w

@@ -9,6 +9,7 @@ offset and other curves are approximated by a B-spline far inside the tolerance.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 from typing import Any
 
@@ -185,6 +186,34 @@ def _curve_to_numpy(c: Geom2d_Curve, first: float, last: float, approx_tol: floa
     return _nurbs(approx.Curve(), trimmed=True, first=first, last=last)
 
 
+def _pieces(
+    c: Geom2d_Curve, first: float, last: float, approx_tol: float, forward: bool
+) -> list[tuple[Curve, float, float]]:
+    """The edge's curve, split where a B-spline has an internal knot of multiplicity
+    at least its degree (only C0 there: a polyline exported as one degree-1 B-spline, a
+    kinked spline): each piece is a medial element of its own, so that a corner inside
+    an edge is a corner. Pieces in the order the loop runs through them."""
+    basis = c
+    while isinstance(basis, Geom2d_TrimmedCurve):
+        basis = basis.BasisCurve()
+    cuts: list[float] = []
+    if isinstance(basis, Geom2d_BSplineCurve) and not basis.IsPeriodic():
+        deg, span = basis.Degree(), abs(last - first)
+        for i in range(2, basis.NbKnots()):
+            k = basis.Knot(i)
+            if basis.Multiplicity(i) >= deg and first + 1e-9 * span < k < last - 1e-9 * span:
+                cuts.append(k)
+    if not cuts:
+        return [(_curve_to_numpy(c, first, last, approx_tol), first, last)]
+    bounds = [first, *cuts, last]
+    out = []
+    for a, b in itertools.pairwise(bounds):
+        part = basis.Copy()
+        part.Segment(a, b)
+        out.append((_nurbs(part, trimmed=False, first=a, last=b), a, b))
+    return out if forward else out[::-1]
+
+
 def _offset_exact(base: Curve, offset: float) -> Curve:
     if isinstance(base, LineCurve):
         d = base.direction
@@ -294,10 +323,10 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
                     c2 = GeomAPI.To2d_s(c3, local)
                     if c2 is None:
                         raise UnsupportedGeometryError("an edge cannot be mapped to the plane")
-                    curve = _curve_to_numpy(c2, first, last, 1e-9 * diag)
                     forward = it.Orientation() != TopAbs_REVERSED
-                    t0, t1 = (first, last) if forward else (last, first)
-                    loop.append(EdgePiece(curve, t0, t1, len(edges)))
+                    for curve, a, b in _pieces(c2, first, last, 1e-9 * diag, forward):
+                        t0, t1 = (a, b) if forward else (b, a)
+                        loop.append(EdgePiece(curve, t0, t1, len(edges)))
                     edges.append(edge)
                 it.Next()
             if loop:
