@@ -797,11 +797,15 @@ def _shrinking_ball(C: Candidates, b: FloatArray, n: FloatArray, r: FloatArray) 
     return r
 
 
-def _global_min(boundary: Boundary, C: Candidates, R: _Rows) -> _Best:
+def _global_min(
+    boundary: Boundary, C: Candidates, R: _Rows, hint: FloatArray | None = None
+) -> _Best:
     """The minimum of ``f`` over the whole boundary per sample (module docstring). A
     sample is settled once its minimum is at most ``R`` (every element that can hold a
     value ``<= R`` was solved) or ``R`` reaches the osculating radius (the disk is the
-    osculating one: no partner)."""
+    osculating one: no partner). ``hint``: a guess of the radius (from neighbouring
+    samples) where the search starts; any value is safe (a low one only costs another
+    round with a doubled reach)."""
     m = len(R.b)
     tiny = 1e-12 * boundary.diag
     diag = boundary.diag
@@ -816,6 +820,8 @@ def _global_min(boundary: Boundary, C: Candidates, R: _Rows) -> _Best:
     cheap = C.kind[ring] != GENERAL
     local = _solve_pairs(boundary, C, R, rows[cheap], ring[cheap], tiny)[0]
     start = np.minimum(np.minimum(R.self_bound, local), 0.5 * diag) * (1 + 1e-3)
+    if hint is not None:
+        start = np.minimum(start, np.where(hint > 0, hint, np.inf))
     reach = _shrinking_ball(C, R.b, R.n, start) * (1 + 1e-3) + 1e-8 * diag
     active = np.arange(m)
     while len(active):
@@ -937,7 +943,12 @@ def _rows_at(
 
 
 def evaluate(
-    boundary: Boundary, cands: Candidates, loop: IntArray, s: FloatArray, tol: float
+    boundary: Boundary,
+    cands: Candidates,
+    loop: IntArray,
+    s: FloatArray,
+    tol: float,
+    hint: FloatArray | None = None,
 ) -> MapSamples:
     """The medial map at boundary points given by ``(loop, s)``.
 
@@ -945,14 +956,15 @@ def evaluate(
     taken to be the osculating disk (its centre is the centre of curvature). So is a disk
     whose partner is on the own curve closer than ``sqrt(tol / k) / 2``: there the medial point is within ``tol`` of the centre of
     curvature of the nearby curvature maximum, and its equations are ill-conditioned.
-    Such samples are flagged ``is_self`` and only locate that end point.
+    Such samples are flagged ``is_self`` and only locate that end point. ``hint``: a
+    guess of each radius that speeds up the search (:func:`_global_min`).
     """
     loop = np.asarray(loop, dtype=np.int64)
     s = np.asarray(s, dtype=float)
     rows = _rows_at(boundary, cands, loop, s, tol)
     foot, normal, elem, param = rows.b, rows.n, rows.own, rows.own_param
     self_bound, near = rows.self_bound, rows.near
-    best, best_elem, best_param = _global_min(boundary, cands, rows)
+    best, best_elem, best_param = _global_min(boundary, cands, rows, hint)
 
     is_self = ~(best < self_bound - 0.05 * tol)
     radius = np.where(is_self, self_bound, best)

@@ -19,6 +19,7 @@ within half the tolerance.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -173,6 +174,7 @@ class _Tracer:
         ] = {}
         self.splines: dict[bytes, Spline] = {}
         self.root_tries: dict[tuple[int, int, int, int], int] = {}
+        self.known: list[tuple[FloatArray, FloatArray]] = []
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
         els = boundary.elements
@@ -205,7 +207,30 @@ class _Tracer:
     # -- sampling ------------------------------------------------------------------
     def eval(self, loop: IntArray, s: FloatArray) -> MapSamples:
         s = np.mod(s, self.L[loop])
-        return evaluate(self.b, self.cands, loop, s, self.cfg.tol)
+        return evaluate(self.b, self.cands, loop, s, self.cfg.tol, self._hint(loop, s))
+
+    def remember(self, S: MapSamples) -> None:
+        """Keep the radii of samples sorted by loop and coordinate (hints for new ones)."""
+        order = np.lexsort((S.s, S.loop))
+        lp, ss, rr = S.loop[order], S.s[order], S.radius[order]
+        cut = np.searchsorted(lp, np.arange(len(self.L) + 1))
+        self.known = [(ss[a:b], rr[a:b]) for a, b in itertools.pairwise(cut.tolist())]
+
+    def _hint(self, loop: IntArray, s: FloatArray) -> FloatArray | None:
+        """A radius guess per point: 1.25 times the larger radius of the remembered
+        samples either side (the radius along the boundary is continuous)."""
+        if not self.known:
+            return None
+        out = np.zeros(len(s))
+        for lp in np.unique(loop):
+            ks, kr = self.known[lp]
+            if len(ks) == 0:
+                continue
+            sel = np.nonzero(loop == lp)[0]
+            j = np.searchsorted(ks, s[sel])
+            r = np.maximum(kr[(j - 1) % len(ks)], kr[j % len(ks)])
+            out[sel] = np.where(np.isfinite(r), 1.25 * r, 0.0)
+        return out
 
     def frame_s(self, loop: int, s: float) -> tuple[FloatArray, FloatArray, float, int, float]:
         s = float(s % self.L[loop])
@@ -321,6 +346,7 @@ class _Tracer:
         for _ in range(cfg.max_bisection_rounds):
             order = np.lexsort((S.s, S.loop))
             S = S.take(order)
+            self.remember(S)
             events: list[_Event] = []
             new_loop: list[int] = []
             new_s: list[float] = []
@@ -966,19 +992,32 @@ def _straight(tr: _Tracer, S: MapSamples, smp: IntArray) -> bool:
     return bool(kind[own[0]] == LINE and other[0] >= 0 and kind[other[0]] == LINE)
 
 
-def _nearest_on_spline(c: _FitCheck, centre: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """Distance from each exact midpoint centre to the nearest of 17 points of the spline
-    between the samples around it, and the spline's radius there. Deliberately coarse: it
-    also bounds how far the spline's parametrisation may drift from the loop coordinate's
-    (a Gauss-Newton projection instead let a spline pass its midpoints yet stray 4 tol
-    between them, next to a 1e-3 notch)."""
+def _nearest_on_spline(
+    c: _FitCheck, centre: FloatArray, tol: float
+) -> tuple[FloatArray, FloatArray]:
+    """Distance from each exact midpoint centre to the nearest of (at least 17) points of
+    the spline between the samples around it, no more than tol/4 apart, and the spline's
+    radius there. Deliberately discrete: it also bounds how far the spline's
+    parametrisation may drift from the loop coordinate's (a Gauss-Newton projection
+    instead let a spline pass its midpoints yet stray 4 tol between them, next to a 1e-3
+    notch). With a fixed 17 points, a step whose centres lie far apart (a fast-moving
+    centre) read as a miss of up to 1/32 of its chord: rounds of needless refinement."""
     n = len(c.mids)
-    uu = c.ua[:, None] + (c.ub - c.ua)[:, None] * np.linspace(0.0, 1.0, 17)[None, :]
-    cur = c.spline(uu.ravel()).reshape(n, 17, -1)
-    dist = np.linalg.norm(cur[..., :2] - centre[:, None, :], axis=2)
-    j = np.argmin(dist, axis=1)
-    r = np.arange(n)
-    return dist[r, j], cur[r, j, 2]
+    ends = c.spline(np.concatenate([c.ua, c.ub])).reshape(2, n, -1)
+    chord = np.linalg.norm(ends[1, :, :2] - ends[0, :, :2], axis=1)
+    # 16 * 2**level intervals per step (levels 0..5), each no longer than tol / 4
+    level = np.clip(np.ceil(np.log2(np.maximum(4.0 * chord / tol, 1.0) / 16.0)), 0, 5)
+    dist, rad = np.empty(n), np.empty(n)
+    for lv in np.unique(level).astype(int):
+        sel = np.nonzero(level == lv)[0]
+        k = 16 * 2**lv + 1
+        uu = c.ua[sel, None] + (c.ub - c.ua)[sel, None] * np.linspace(0.0, 1.0, k)[None, :]
+        cur = c.spline(uu.ravel()).reshape(len(sel), k, -1)
+        d = np.linalg.norm(cur[..., :2] - centre[sel, None, :], axis=2)
+        j = np.argmin(d, axis=1)
+        r = np.arange(len(sel))
+        dist[sel], rad[sel] = d[r, j], cur[r, j, 2]
+    return dist, rad
 
 
 def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) -> list[MapSamples]:
@@ -995,7 +1034,7 @@ def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) 
     for c in checks:
         sl = slice(k, k + len(c.mids))
         k += len(c.mids)
-        dist, rad = _nearest_on_spline(c, centre[sl])
+        dist, rad = _nearest_on_spline(c, centre[sl], tol)
         bad = (dist > 0.5 * tol) | (np.abs(rad - radius[sl]) > 0.5 * tol)
         bad &= ~is_self[sl]  # next to a curvature-centre end point: the end point rules there
         if not np.any(bad):
