@@ -20,6 +20,7 @@ within half the tolerance.
 from __future__ import annotations
 
 import itertools
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -683,20 +684,31 @@ def _merge_nodes(events: list[_Event], radius: float) -> int:
     roots: dict[int, int] = {}
     for i, e in enumerate(events):
         e.node = roots.setdefault(find(i), len(roots))
-    # every event of a node carries the node's point and radius (branches end exactly there)
-    groups: dict[int, list[_Event]] = {}
-    for e in events:
-        groups.setdefault(e.node, []).append(e)
-    for group in groups.values():
-        if len(group) > 1:
-            corner = [e for e in group if e.kind is NodeKind.CONVEX_VERTEX]
-            pt = corner[0].point if corner else np.mean([e.point for e in group], axis=0)
-            r = 0.0 if corner else float(np.mean([e.radius for e in group]))
-            spread = max(float(np.linalg.norm(e.point - pt)) for e in group)
-            for e in group:
-                e.point, e.radius = pt, r
-                e.spread = max(e.spread, spread)
-    return len(roots)
+    if not events:
+        return 0
+    # every event of a node carries the node's point and radius (branches end exactly
+    # there): the mean of its events', or a convex vertex's own (r = 0)
+    n = len(roots)
+    lab = np.array([e.node for e in events], dtype=np.int64)
+    count = np.bincount(lab, minlength=n)
+    rad = np.array([e.radius for e in events])
+    pt = np.zeros((n, 2))
+    np.add.at(pt, lab, pts)
+    pt /= count[:, None]
+    r = np.bincount(lab, weights=rad, minlength=n) / count
+    for i, e in enumerate(events):
+        if e.kind is NodeKind.CONVEX_VERTEX and count[lab[i]] > 1:
+            pt[lab[i]], r[lab[i]] = e.point, 0.0
+            count[lab[i]] = -count[lab[i]]  # the first corner rules
+    count = np.abs(count)
+    dist = np.linalg.norm(pts - pt[lab], axis=1)
+    spread = np.zeros(n)
+    np.maximum.at(spread, lab, dist)
+    for i in np.nonzero(count[lab] > 1)[0]:
+        e, k = events[i], lab[i]
+        e.point, e.radius = pt[k], float(r[k])
+        e.spread = max(e.spread, float(spread[k]))
+    return n
 
 
 @dataclass
@@ -992,32 +1004,20 @@ def _straight(tr: _Tracer, S: MapSamples, smp: IntArray) -> bool:
     return bool(kind[own[0]] == LINE and other[0] >= 0 and kind[other[0]] == LINE)
 
 
-def _nearest_on_spline(
-    c: _FitCheck, centre: FloatArray, tol: float
-) -> tuple[FloatArray, FloatArray]:
-    """Distance from each exact midpoint centre to the nearest of (at least 17) points of
-    the spline between the samples around it, no more than tol/4 apart, and the spline's
-    radius there. Deliberately discrete: it also bounds how far the spline's
-    parametrisation may drift from the loop coordinate's (a Gauss-Newton projection
-    instead let a spline pass its midpoints yet stray 4 tol between them, next to a 1e-3
-    notch). With a fixed 17 points, a step whose centres lie far apart (a fast-moving
-    centre) read as a miss of up to 1/32 of its chord: rounds of needless refinement."""
+def _nearest_on_spline(c: _FitCheck, centre: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Distance from each exact midpoint centre to the nearest of 17 points of the spline
+    between the samples around it, and the spline's radius there. Deliberately coarse: it
+    also bounds how far the spline's parametrisation may drift from the loop coordinate's
+    (a Gauss-Newton projection instead let a spline pass its midpoints yet stray 4 tol
+    between them, next to a 1e-3 notch; points no more than tol/4 apart let a spline
+    stray 0.1 diag between sparse samples of a free-form profile)."""
     n = len(c.mids)
-    ends = c.spline(np.concatenate([c.ua, c.ub])).reshape(2, n, -1)
-    chord = np.linalg.norm(ends[1, :, :2] - ends[0, :, :2], axis=1)
-    # 16 * 2**level intervals per step (levels 0..5), each no longer than tol / 4
-    level = np.clip(np.ceil(np.log2(np.maximum(4.0 * chord / tol, 1.0) / 16.0)), 0, 5)
-    dist, rad = np.empty(n), np.empty(n)
-    for lv in np.unique(level).astype(int):
-        sel = np.nonzero(level == lv)[0]
-        k = 16 * 2**lv + 1
-        uu = c.ua[sel, None] + (c.ub - c.ua)[sel, None] * np.linspace(0.0, 1.0, k)[None, :]
-        cur = c.spline(uu.ravel()).reshape(len(sel), k, -1)
-        d = np.linalg.norm(cur[..., :2] - centre[sel, None, :], axis=2)
-        j = np.argmin(d, axis=1)
-        r = np.arange(len(sel))
-        dist[sel], rad[sel] = d[r, j], cur[r, j, 2]
-    return dist, rad
+    uu = c.ua[:, None] + (c.ub - c.ua)[:, None] * np.linspace(0.0, 1.0, 17)[None, :]
+    cur = c.spline(uu.ravel()).reshape(n, 17, -1)
+    dist = np.linalg.norm(cur[..., :2] - centre[:, None, :], axis=2)
+    j = np.argmin(dist, axis=1)
+    r = np.arange(n)
+    return dist[r, j], cur[r, j, 2]
 
 
 def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) -> list[MapSamples]:
@@ -1034,7 +1034,7 @@ def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) 
     for c in checks:
         sl = slice(k, k + len(c.mids))
         k += len(c.mids)
-        dist, rad = _nearest_on_spline(c, centre[sl], tol)
+        dist, rad = _nearest_on_spline(c, centre[sl])
         bad = (dist > 0.5 * tol) | (np.abs(rad - radius[sl]) > 0.5 * tol)
         bad &= ~is_self[sl]  # next to a curvature-centre end point: the end point rules there
         if not np.any(bad):
@@ -1107,20 +1107,23 @@ def _assemble(
             if NodeKind.CONVEX_VERTEX in kinds
             else NodeKind.CURVATURE_CENTRE
         )
-        pt = np.mean([e.point for e in evs], axis=0)
-        r = float(np.mean([e.radius for e in evs]))
+        pt = evs[0].point if len(evs) == 1 else np.mean([e.point for e in evs], axis=0)
+        r = evs[0].radius if len(evs) == 1 else float(np.mean([e.radius for e in evs]))
         feet: list[Footpoint] = []
+        xy: list[tuple[float, float]] = []
         for e in evs:
             for el, par, fp in e.feet:
                 # one foot per element within tol (events of one node found it apart);
                 # feet on distinct elements are distinct (a nearly flat corner's spoke
                 # touches both its sides closer than tol), unless they coincide
+                x, y = float(fp[0]), float(fp[1])
                 if all(
-                    np.linalg.norm(f.point_2d - fp)
+                    math.hypot(x - q[0], y - q[1])
                     > (tol if _one_foot(tr, f.element, el) else 1e-6 * tol)
-                    for f in feet
+                    for f, q in zip(feet, xy, strict=True)
                 ):
                     feet.append(Footpoint(el, par, np.asarray(fp, dtype=float)))
+                    xy.append((x, y))
         nodes.append(Node(ni, kind, pt, frame.to_3d(pt), r, tuple(feet)))
     branches: list[Branch] = []
     for iv in kept:
@@ -1141,24 +1144,16 @@ def _assemble(
         smp = iv.samples
         a_el, a_par, a_pt = S.element[smp], S.param[smp], S.foot[smp]
         b_el, b_par, b_pt = S.partner_element[smp], S.partner_param[smp], S.partner_point[smp]
+        cols: list[tuple] = [(a_el, a_par, a_pt, b_el, b_par, b_pt)]
         if iv.start is not None:
-            f0 = iv.start
-            a_el, a_par, a_pt, b_el, b_par, b_pt = _pad(
-                (a_el, a_par, a_pt, b_el, b_par, b_pt), 0, S, smp, f0, nodes[f0.node].footpoints
-            )
+            cols.insert(0, _pad(0, S, smp, iv.start, nodes[iv.start.node].footpoints))
         if iv.end is not None:
-            a_el, a_par, a_pt, b_el, b_par, b_pt = _pad(
-                (a_el, a_par, a_pt, b_el, b_par, b_pt),
-                -1,
-                S,
-                smp,
-                iv.end,
-                nodes[iv.end.node].footpoints,
-            )
-        if iv.start is None:
-            a_el, a_par, a_pt, b_el, b_par, b_pt = (
-                np.concatenate([x, x[:1]]) for x in (a_el, a_par, a_pt, b_el, b_par, b_pt)
-            )
+            cols.append(_pad(-1, S, smp, iv.end, nodes[iv.end.node].footpoints))
+        if iv.start is None:  # closed loop: back to the first sample
+            cols.append(tuple(x[:1] for x in cols[0]))
+        a_el, a_par, a_pt, b_el, b_par, b_pt = (
+            np.concatenate([c[k] for c in cols]) for k in range(6)
+        )
         branches.append(
             Branch(
                 len(branches),
@@ -1189,12 +1184,9 @@ def _one_foot(tr: _Tracer, a: int, b: int) -> bool:
     return (min(a, b), max(a, b)) in tr.smooth_pairs
 
 
-def _pad(
-    arrs: tuple, where: int, S: MapSamples, smp: IntArray, ev: _Event, node_feet: tuple
-) -> tuple:
-    """Footpoints at an end node: a branch point's own footpoints on the two sides, a
-    convex vertex itself, otherwise the nearest sample's."""
-    a_el, a_par, a_pt, b_el, b_par, b_pt = arrs
+def _pad(where: int, S: MapSamples, smp: IntArray, ev: _Event, node_feet: tuple) -> tuple:
+    """Footpoints at an end node (one row of the six foot columns): a branch point's own
+    footpoints on the two sides, a convex vertex itself, otherwise the nearest sample's."""
     if len(smp):
         j = smp[0] if where == 0 else smp[-1]
         vals = (
@@ -1230,10 +1222,7 @@ def _pad(
                 f = min(same, key=lambda f: float(np.linalg.norm(f.point_2d - pt)))
                 out_vals[k : k + 3] = [np.array([el]), np.array([f.param]), f.point_2d[None, :]]
         vals = tuple(out_vals)  # type: ignore[assignment]
-    out = []
-    for x, v in zip((a_el, a_par, a_pt, b_el, b_par, b_pt), vals, strict=True):
-        out.append(np.concatenate([v, x]) if where == 0 else np.concatenate([x, v]))
-    return tuple(out)
+    return vals
 
 
 def _prev_edge(boundary: Boundary, index: int) -> int:
