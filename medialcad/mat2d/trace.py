@@ -570,7 +570,11 @@ class _Tracer:
                 (int(S.partner_element[i1]), float(S.partner_param[i1]), S.partner_point[i1]),
             ]
             events.append(_Event(lp, s0[j], s0[j] + ds[j], NodeKind.BRANCH_POINT, c, r, feet))
-        sp = cand & ~crosses & ~jump & (d0 > 0) & (d1 < 0) & (d0 - d1 <= 3 * ds + cfg.tol)
+        # a self-partner point: the (continuous) partner passes the point itself, from
+        # ahead to behind; d0 - d1 = ds - (p1 - p0) <= ds + gap unless d wrapped around
+        # the loop (the bound was 3 ds: a partner moving 2.1 times faster than the point
+        # crossed it unseen, and the two sides of a branch became one self-twin loop)
+        sp = cand & ~crosses & ~jump & (d0 > 0) & (d1 < 0) & (d0 - d1 <= ds + gap + cfg.tol)
         for j in np.nonzero(sp)[0]:
             c, r, p, ei, t = self._sp_node(lp, s0[j], s0[j] + ds[j])
             events.append(
