@@ -709,11 +709,23 @@ def medial_points_2d(face: Any, n_samples: int) -> tuple[FloatArray, FloatArray,
     b, nrm, where = fb.boundary_samples(n_samples)
     s = np.array(
         [
-            fb.medial_depth(bi, ni, max_depth=fb.curvature_radius(i, t))
+            _depth(fb, bi, ni, fb.curvature_radius(i, t))
             for bi, ni, (i, t) in zip(b, nrm, where, strict=True)
         ]
     )
     return b, b + s[:, None] * nrm, s
+
+
+def _depth(fb: FaceBoundary, b: FloatArray, n: FloatArray, rho: float) -> float:
+    """Medial depth of ``b``: the osculating radius ``rho`` when the osculating disk lies
+    in the face (its centre is at least ``rho`` from the boundary: exact, where the ray
+    bisection is ill-conditioned, as every point of an arc is nearly as near as ``b``),
+    else the ray-depth bisection."""
+    if np.isfinite(rho) and rho > 0:
+        d, _ = fb.nearest(b + rho * n)
+        if d >= rho - fb.eps and fb.inside(b + rho * n, clearance=d):
+            return float(rho)
+    return fb.medial_depth(b, n, max_depth=rho)
 
 
 def completeness_2d(
