@@ -204,3 +204,43 @@ def test_cubic_bspline_edge_with_c0_and_c1_knots() -> None:
     corner = np.array([at.X(), at.Y()])
     assert any(n.kind is CV and np.linalg.norm(n.point[:2] - corner) < 1e-9 for n in mat.nodes)
     _check_oracles(face, mat)
+
+
+def test_periodic_bspline_only_c1_at_its_seam() -> None:
+    """A periodic cubic B-spline whose end knots have multiplicity 2 is only C1 at its seam:
+    the curvature jumps there (7.6 on one side, 1.96 on the other, from a fuzzed blob). The
+    curvature-centre end at the seam takes the high side (r = 0.13); it was placed at the
+    low side's centre (r = 0.51), 0.1 diag off the boundary distance."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
+    from OCP.Geom import Geom_BSplineCurve
+    from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
+
+    # a fuzzed blob as written to BREP, far from the origin and tilted (the seam's end
+    # point is found by a golden-section search that met the seam exactly there)
+    poles = [
+        (559.3687955209216, 745.1720710929917, 361.2337432249238),
+        (559.1191817596631, 745.5029523861404, 361.2875382200939),
+        (558.8650047962662, 746.1399118128998, 361.23570306771074),
+        (558.6108558345835, 747.2286162352932, 361.0233238565742),
+        (559.6966279382689, 747.0081944135727, 360.35621552618505),
+        (559.8603363453843, 746.2080058924777, 360.5281640847142),
+        (560.3685183743322, 745.2297148146184, 360.52690287499854),
+    ]
+    knots = [0.0, 0.8872188992405842, 1.7744377984811686, 2.675947278634538]
+    knots += [3.3471053109522844, 4.214187908408746, 5.214187908408746]
+    arr = TColgp_Array1OfPnt(1, len(poles))
+    for i, (x, y, z) in enumerate(poles, start=1):
+        arr.SetValue(i, gp_Pnt(x, y, z))
+    kn, mu = TColStd_Array1OfReal(1, len(knots)), TColStd_Array1OfInteger(1, len(knots))
+    for i, k in enumerate(knots, start=1):
+        kn.SetValue(i, k)
+        mu.SetValue(i, 2 if i in (1, len(knots)) else 1)
+    curve = Geom_BSplineCurve(arr, kn, mu, 3, True)
+    wire = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(curve).Edge()).Wire()
+    face = BRepBuilderAPI_MakeFace(wire, True).Face()
+    mat = medialcad.medial_axis_2d(face)
+    fb = O.FaceBoundary(face)
+    nodes = np.array([n.point for n in mat.nodes])
+    assert O.radius_error_2d(fb, nodes, [n.radius for n in mat.nodes]).max() <= mat.tol
+    assert cycle_rank(mat) == (1, 0)
+    _check_oracles(face, mat)

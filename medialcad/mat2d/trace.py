@@ -336,6 +336,14 @@ class _Tracer:
                 x2 = a + g * (b - a)
                 k2 = self.frame_s(loop, x2)[2]
         p, n, k, ei, t = self.frame_s(loop, 0.5 * (a + b))
+        # a loop of one closed curve (a periodic B-spline, perhaps only C1 at its seam):
+        # the middle can land on the seam and read the low side's curvature (a node 0.1
+        # diag off); the last probes either side of it rule there
+        if self.b.elements[ei].length >= self.L[loop] * (1 - 1e-12):
+            for x in (x1, x2):
+                q = self.frame_s(loop, x)
+                if q[2] > k:
+                    p, n, k, ei, t = q
         if k <= 0:
             raise ComputationError("self-partner point on a non-convex boundary stretch")
         return p + n / k, 1.0 / k, p, ei, t
