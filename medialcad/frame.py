@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -20,9 +21,9 @@ class Frame:
     xdir: FloatArray
     ydir: FloatArray
 
-    @property
+    @cached_property
     def zdir(self) -> FloatArray:
-        """The plane normal (right-handed)."""
+        """The plane normal (right-handed; computed once)."""
         return np.cross(self.xdir, self.ydir)
 
     def to_3d(self, pts: ArrayLike) -> FloatArray:

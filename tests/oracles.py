@@ -37,7 +37,7 @@ from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.TColStd import TColStd_Array1OfReal
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_OUT, TopAbs_VERTEX
-from OCP.TopExp import TopExp_Explorer
+from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 from scipy.optimize import minimize_scalar
 from scipy.spatial import cKDTree
@@ -379,7 +379,13 @@ class FaceBoundary:
         e1 = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
         e1 /= np.linalg.norm(e1)
         e2 = np.cross(n, e1)
-        step = max(0.5 * clearance, 1e-6 * self.diag)
+        # the moved points must stay on q's side of the boundary: within half the
+        # clearance (a 1e-6 diag step left a point 7e-5 inside a 1e-3 notch's corner)
+        if clearance <= 0:
+            saved = self.last_foot, self.last_vertex
+            clearance = self.nearest(q)[0]
+            self.last_foot, self.last_vertex = saved
+        step = 0.5 * clearance
         votes = sum(
             BRepClass_FaceClassifier(self.face, _pnt(x), tol).State() != TopAbs_OUT
             for x in (q, q + step * e1, q + step * (0.6 * e1 + 0.8 * e2))
@@ -407,6 +413,18 @@ class FaceBoundary:
         if not ok.any():
             return math.inf
         return float(np.min(np.einsum("ij,ij->i", v[ok], v[ok]) / (2 * h[ok])))
+
+    def end_vertex(self, i: int, t: float) -> Any:
+        """The vertex of edge ``i`` at parameter ``t`` if ``t`` is one of its ends (within
+        1e-12 of its range), else None."""
+        c = self.curves[i]
+        t0, t1 = c.FirstParameter(), c.LastParameter()
+        slack = 1e-12 * max(abs(t1 - t0), 1.0)
+        if abs(t - t0) <= slack:
+            return TopExp.FirstVertex_s(self.edges[i])
+        if abs(t - t1) <= slack:
+            return TopExp.LastVertex_s(self.edges[i])
+        return None
 
     def feet_at_vertex(self, vertex: Any, u: FloatArray) -> list[tuple[int, float]]:
         """``(edge, parameter)`` at ``vertex`` of the edges whose inward normal there is ``u``
@@ -688,8 +706,12 @@ def soundness_2d(face: Any, points3d: ArrayLike, tol: float, refine: bool = True
         foot = fb.last_foot
         u = (p - q) / d
         feet = [foot] if foot is not None else []
-        if foot is None and fb.last_vertex is not None:
-            feet = fb.feet_at_vertex(fb.last_vertex, u)
+        vertex = fb.last_vertex if foot is None else fb.end_vertex(*foot)
+        if vertex is not None:
+            # a foot at a vertex (BRepExtrema may report it on an edge's end): the edges
+            # whose normal there is u, none at a corner (a reflex vertex's parabola is not
+            # capped by the curvature of the edge that ends there)
+            feet = fb.feet_at_vertex(vertex, u)
             foot = feet[0] if feet else None
         # the curvature criterion on every side of the foot (a G1 line-arc joint: the arc's)
         kappa_r = min((fb.curvature_radius(*f) for f in feet), default=math.inf)

@@ -11,6 +11,7 @@ are a function of ``(loop, s)``.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -127,11 +128,20 @@ def _signed_area(pts: FloatArray) -> float:
 
 
 def _loop_polyline(loop: list[EdgePiece], n: int = 64) -> FloatArray:
-    pts = [p.curve.point(np.linspace(p.t0, p.t1, n, endpoint=False)) for p in loop]
+    """Points around a loop: a line's start point, ``n`` points of a curve."""
+    pts = [
+        p.curve.point([p.t0])
+        if isinstance(p.curve, LineCurve)
+        else p.curve.point(np.linspace(p.t0, p.t1, n, endpoint=False))
+        for p in loop
+    ]
     return np.vstack(pts)
 
 
 def _tangent(piece: EdgePiece, at_end: bool) -> FloatArray:
+    if isinstance(piece.curve, LineCurve):
+        d = piece.curve.direction * (1.0 if piece.t1 > piece.t0 else -1.0)
+        return np.asarray(d / math.hypot(d[0], d[1]))
     t = piece.t1 if at_end else piece.t0
     _, d1, _ = piece.curve.derivs([t])
     if np.linalg.norm(d1[0]) <= 1e-12 * max(abs(piece.t1 - piece.t0), 1e-300):

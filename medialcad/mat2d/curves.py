@@ -44,6 +44,10 @@ class LineCurve(Curve):
         d1 = np.broadcast_to(self.direction, p.shape).copy()
         return p, d1, np.zeros_like(p)
 
+    def point(self, t: ArrayLike) -> FloatArray:
+        tt = np.atleast_1d(np.asarray(t, dtype=float))[:, None]
+        return np.asarray(self.origin + tt * self.direction)
+
     @property
     def constant_curvature(self) -> float | None:
         return 0.0

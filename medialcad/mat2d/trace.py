@@ -534,9 +534,13 @@ class _Tracer:
         # steps across a convex corner take part in jump detection too: a nearly flat
         # corner's spoke meets the main axis at a branch point right next to it
         cand = ~self_[idx] & ~self_[nxt]
-        # a jump: the partner moves much faster over this step than over the steps
-        # beside it, and keeps doing so as the step is halved
-        ratio = gap / np.maximum(ds, 1e-300)
+        # a jump: the partner *point* moves much faster over this step than over the
+        # steps beside it, and keeps doing so as the step is halved (not its loop
+        # coordinate: a partner turning about a reflex vertex sweeps the vertex's
+        # element, angle x angle_scale, without moving, fast next to a small feature)
+        moved = np.hypot(*(S.partner_point[nxt] - S.partner_point[idx]).T)
+        pgap = np.where(same_loop, moved, np.inf)
+        ratio = pgap / np.maximum(ds, 1e-300)
         cont = np.where(cand & np.isfinite(ratio), ratio, np.inf)
         beside = np.minimum(np.roll(cont, 1), np.roll(cont, -1))
         beside = np.where(np.isfinite(beside), beside, 0.0)
@@ -546,38 +550,69 @@ class _Tracer:
         # corner's spoke meets the axis there), however small the step
         # (a step that itself crosses a convex corner has partners on both sides of it)
         apart |= self._partner_over_corner(S, idx, nxt, same_loop) & ~crosses
-        jump = cand & (gap > cfg.tol) & ((ratio > 3.0 * beside + 1.0) | apart)
+        jump = cand & (pgap > cfg.tol) & ((ratio > 3.0 * beside + 1.0) | apart)
         split = jump & (ds > cfg.eps_s)
         # a jump between two distinct elements: bracket the point where they tie (a few
         # times per pair at most: a step may hold more than one event)
         own = S.element[idx]
-        for j in np.nonzero(split & (pe0 != pe1) & (pe0 >= 0) & (pe1 >= 0))[0]:
-            key = (lp, int(own[j]), int(pe0[j]), int(pe1[j]))
-            tries = self.root_tries.get(key, 0)
-            if tries < 3:
-                self.root_tries[key] = tries + 1
-                lines = bool(
-                    np.all(self.cands.kind[[own[j], S.element[nxt[j]], pe0[j], pe1[j]]] == LINE)
-                )
-                jumps.append(_Jump(lp, float(s0[j]), float(ds[j]), int(pe0[j]), int(pe1[j]), lines))
-                split[j] = False
+        js = np.nonzero(split & (pe0 != pe1) & (pe0 >= 0) & (pe1 >= 0))[0]
+        if len(js):
+            kind = self.cands.kind
+            all_lines = (
+                (kind[own[js]] == LINE)
+                & (kind[S.element[nxt[js]]] == LINE)
+                & (kind[pe0[js]] == LINE)
+                & (kind[pe1[js]] == LINE)
+            ).tolist()
+            rows = zip(
+                js.tolist(),
+                own[js].tolist(),
+                pe0[js].tolist(),
+                pe1[js].tolist(),
+                s0[js].tolist(),
+                ds[js].tolist(),
+                all_lines,
+                strict=True,
+            )
+            for j, ej, a, b, sj, dj, lines in rows:
+                key = (lp, ej, a, b)
+                tries = self.root_tries.get(key, 0)
+                if tries < 3:
+                    self.root_tries[key] = tries + 1
+                    jumps.append(_Jump(lp, sj, dj, a, b, lines))
+                    split[j] = False
         # split other suspicious steps in eight: fewer rounds of (overhead-bound) evaluation
         frac = np.arange(1, 8) / 8.0
         pts = (s0[split, None] + ds[split, None] * frac[None, :]).ravel()
         new_loop += [lp] * len(pts)
         new_s += list(pts)
         split |= jump & (ds > cfg.eps_s)
-        centre = S.centre
-        for j in np.nonzero(jump & ~split)[0]:
-            i0, i1 = idx[j], nxt[j]
-            c = 0.5 * (centre[i0] + centre[i1])
-            r = 0.5 * (S.radius[i0] + S.radius[i1])
-            feet = [
-                (int(S.element[i0]), float(S.param[i0]), S.foot[i0]),
-                (int(S.partner_element[i0]), float(S.partner_param[i0]), S.partner_point[i0]),
-                (int(S.partner_element[i1]), float(S.partner_param[i1]), S.partner_point[i1]),
-            ]
-            events.append(_Event(lp, s0[j], s0[j] + ds[j], NodeKind.BRANCH_POINT, c, r, feet))
+        # an isolated jump: a branch point with the point and the partners either side
+        # as its footpoints (built row-wise from whole columns: there are thousands)
+        js = np.nonzero(jump & ~split)[0]
+        if len(js):
+            i0, i1 = idx[js], nxt[js]
+            cs = 0.5 * (S.centre[i0] + S.centre[i1])
+            rows = zip(
+                s0[js].tolist(),
+                (s0[js] + ds[js]).tolist(),
+                cs,
+                (0.5 * (S.radius[i0] + S.radius[i1])).tolist(),
+                S.element[i0].tolist(),
+                S.param[i0].tolist(),
+                S.foot[i0],
+                S.partner_element[i0].tolist(),
+                S.partner_param[i0].tolist(),
+                S.partner_point[i0],
+                S.partner_element[i1].tolist(),
+                S.partner_param[i1].tolist(),
+                S.partner_point[i1],
+                strict=True,
+            )
+            bp = NodeKind.BRANCH_POINT
+            for lo_s, hi_s, c, r, ea, ta, fa, eb, tb, fb, ec, tc, fc in rows:
+                feet = [(ea, ta, fa), (eb, tb, fb), (ec, tc, fc)]
+                events.append(_Event(lp, lo_s, hi_s, bp, c, r, feet))
         # a self-partner point: the (continuous) partner passes the point itself, from
         # ahead to behind; d0 - d1 = ds - (p1 - p0) <= ds + gap unless d wrapped around
         # the loop (the bound was 3 ds: a partner moving 2.1 times faster than the point
@@ -965,8 +1000,10 @@ class _FitCheck:
     key: tuple[int, float, float, int]
     loop: int
     spline: Spline
-    mids: FloatArray  # loop coordinates of the midpoints
-    ua: FloatArray  # spline parameters of the samples around each midpoint
+    mids: FloatArray  # loop coordinates of the check points
+    lo: FloatArray  # the step holding each check point: its start and width (loop
+    width: FloatArray  # coordinate) and the spline parameters of its two samples
+    ua: FloatArray
     ub: FloatArray
 
 
@@ -1001,8 +1038,22 @@ def _fit_check(tr: _Tracer, S: MapSamples, iv: _Interval) -> _FitCheck | None:
     pts, rad = _branch_arrays(S, iv)
     spline = tr.fit(np.column_stack([pts, rad]))
     u = _knots_of(pts)
-    mids = s_ext[:-1][ok] + 0.5 * d[ok]
-    return _FitCheck(key, iv.loop, spline, mids, u[:-1][ok], u[1:][ok])
+    # a step over which a footpoint passes to the next element holds a joint where the
+    # branch is only C1 (its curvature jumps): the interpolating spline can pass its
+    # midpoint and still swing out beside it, so it is checked at its quarters too
+    own, other = S.element[iv.samples], S.partner_element[iv.samples]
+    change = (own[1:] != own[:-1]) | (other[1:] != other[:-1])
+    if iv.start is None:
+        joint = np.concatenate([change, [own[-1] != own[0] or other[-1] != other[0]]])
+    else:
+        joint = np.concatenate([[False], change, [False]])
+    lo, width, ua, ub = s_ext[:-1][ok], d[ok], u[:-1][ok], u[1:][ok]
+    frac = np.where(joint[ok][:, None], _QUARTERS, 0.5)
+    first = np.ones_like(frac, dtype=bool)
+    first[:, 1:] = joint[ok][:, None]
+    rows = np.nonzero(first)[0]
+    mids = (lo[:, None] + width[:, None] * frac)[first]
+    return _FitCheck(key, iv.loop, spline, mids, lo[rows], width[rows], ua[rows], ub[rows])
 
 
 def _straight(tr: _Tracer, S: MapSamples, smp: IntArray) -> bool:
@@ -1033,8 +1084,11 @@ def _nearest_on_spline(c: _FitCheck, centre: FloatArray) -> tuple[FloatArray, Fl
 
 
 def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) -> list[MapSamples]:
-    """Samples at the exact midpoints that the fitted splines miss by more than tol/2
-    (all branches' midpoints are evaluated at once)."""
+    """Samples in the steps whose exact midpoints the fitted splines miss by more than
+    tol/2 (all branches' midpoints are evaluated at once). A step is split in ``k``
+    equal parts, ``k`` from the miss ``e`` and the ``h^4`` error of a cubic
+    interpolant, ``k = (4 e / tol)^(1/4)`` (2 to 8): a wide miss takes one round of
+    refitting, not several."""
     checks = [c for c in (_fit_check(tr, S, iv) for iv in kept) if c is not None]
     if not checks:
         return []
@@ -1047,14 +1101,28 @@ def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) 
         sl = slice(k, k + len(c.mids))
         k += len(c.mids)
         dist, rad = _nearest_on_spline(c, centre[sl])
-        bad = (dist > 0.5 * tol) | (np.abs(rad - radius[sl]) > 0.5 * tol)
-        bad &= ~is_self[sl]  # next to a curvature-centre end point: the end point rules there
+        miss = np.maximum(dist, np.abs(rad - radius[sl]))
+        bad = (miss > 0.5 * tol) & ~is_self[sl]
+        # (next to a curvature-centre end point: the end point rules there)
         if not np.any(bad):
             tr.fit_ok.add(c.key)
-        add_loop.append(np.full(int(bad.sum()), c.loop, dtype=np.int64))
-        add_s.append(c.mids[bad])
+            continue
+        parts = np.clip(np.ceil((4.0 * miss[bad] / tol) ** 0.5), 2, _MAX_PARTS).astype(np.int64)
+        lo, width = c.lo[bad], c.width[bad]
+        j = np.arange(1, _MAX_PARTS)
+        frac = j[None, :] / parts[:, None]
+        take = j[None, :] < parts[:, None]
+        new_s = np.unique((lo[:, None] + width[:, None] * frac)[take])
+        add_loop.append(np.full(len(new_s), c.loop, dtype=np.int64))
+        add_s.append(new_s)
+    if not add_s:
+        return []
     loop, s = np.concatenate(add_loop), np.concatenate(add_s)
     return [tr.eval(loop, s)] if len(s) else []
+
+
+_QUARTERS = np.array([0.5, 0.25, 0.75])  # check points of a step over a joint
+_MAX_PARTS = 8  # most parts a step missed by its spline is split into in one round
 
 
 def _fill_empty(tr: _Tracer, kept: list[_Interval]) -> list[MapSamples]:
@@ -1145,11 +1213,10 @@ def _assemble(
             if extent <= 4 * tol:  # a degenerate stretch between events of one node
                 continue
         values = np.column_stack([pts, rad])
-        if len(values) > 4 and _straight(tr, S, iv.samples):
+        if len(iv.samples) and _straight(tr, S, iv.samples):
             # collinear, radius linear along the line, chord-length parameters
             # proportional to arc length: the cubic through all the points is the line
-            w = np.linspace(0.0, 1.0, 4)[:, None]
-            coeffs = (1 - w) * values[0] + w * values[-1]
+            coeffs = (1 - _THIRDS) * values[0] + _THIRDS * values[-1]
             spline = Spline(np.repeat([0.0, 1.0], 4), coeffs, 3)
         else:
             spline = tr.fit(values)
@@ -1185,15 +1252,19 @@ def _assemble(
     return MedialGraph(frame, tol, tuple(nodes), tuple(branches), elements)
 
 
+_THIRDS = np.array([[0.0], [1 / 3], [2 / 3], [1.0]])  # control points of a straight cubic
+
+
 def _one_foot(tr: _Tracer, a: int, b: int) -> bool:
     """Whether feet on elements ``a`` and ``b`` within tol of each other are one foot:
     the same element, or two meeting smoothly. Feet on two sides of a convex corner are
     two (a nearly flat corner's spoke touches both closer than tol)."""
+    a, b = int(a), int(b)
     if a == b:
         return True
     if a < 0 or b < 0:
         return False
-    return (min(a, b), max(a, b)) in tr.smooth_pairs
+    return ((a, b) if a < b else (b, a)) in tr.smooth_pairs
 
 
 def _pad(where: int, S: MapSamples, smp: IntArray, ev: _Event, node_feet: tuple) -> tuple:
