@@ -515,7 +515,7 @@ def check(
     sp, sr = _sample_sheets(result, per_face, max_faces, rng)
     cp, cr = _sample_curves(result, per_edge, max_edges, rng)
     pts, rad = np.vstack([sp, cp]), np.concatenate([sr, cr])
-    snd = O.soundness(sb, pts)
+    snd = O.soundness(sb, pts, refine_above=tol)
     finite = snd[np.isfinite(snd)]
     radius = O.radius_error(sb, pts, rad)
     cmp_ = completeness(sb, result.compound, n_complete, seed, enough=0.01 * tol)

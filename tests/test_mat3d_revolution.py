@@ -793,7 +793,7 @@ def oracle_numbers(
     if len(pts) > max_samples:
         keep = np.sort(rng.choice(len(pts), max_samples, replace=False))
         pts, rad, mid = pts[keep], rad[keep], mid[keep]
-    snd = O.soundness(sb, pts)
+    snd = O.soundness(sb, pts, refine_above=num.tol)
     finite = snd[np.isfinite(snd)]
     num.samples, num.rim, num.outside = len(snd), int(np.isnan(snd).sum()), int(np.isinf(snd).sum())
     num.soundness = float(finite.max(initial=0.0))

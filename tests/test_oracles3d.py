@@ -293,6 +293,32 @@ def test_shifted_sheets_show_their_offset(
     assert err == pytest.approx(np.full(clear.sum(), math.sqrt(2) * delta), rel=1e-8)
 
 
+def test_refined_soundness_is_the_distance_to_the_mat(
+    box: O.SolidBoundary, box_mat: dict[str, TopoDS_Shape]
+) -> None:
+    # the two shifted sheets above, re-measured where the ray error exceeds a threshold:
+    # the distance to the true medial points with feet near the sample's (the mid sheet's
+    # delta again; delta, not sqrt(2) delta, across the tilted triangle)
+    delta = 0.01 * box.diag
+    mid = O.sample_compound(box_mat["mid"], n_face=30, n_edge=0)
+    x, y = mid[:, 0], mid[:, 1]
+    inner = (np.minimum(x, A - x) > C / 2 + 2 * delta) & (np.minimum(y, B - y) > C / 2 + 2 * delta)
+    assert inner.sum() >= 5
+    err = O.soundness(box, mid[inner][:5] + np.array([0.0, 0.0, delta]), refine_above=0.1 * delta)
+    assert err == pytest.approx(np.full(5, delta), rel=1e-6)
+    tri = O.sample_compound(box_mat["vertical_00"], n_face=200, n_edge=0)
+    off = tri + delta * np.array([1.0, -1.0, 0.0]) / math.sqrt(2)
+    x, z = off[:, 0], off[:, 2]
+    clear = (np.minimum(z, C - z) > x + 4 * delta) & (off[:, 1] > 4 * delta) & (x > 4 * delta)
+    assert clear.sum() >= 5
+    raw = O.soundness(box, off[clear][:5])
+    err = O.soundness(box, off[clear][:5], refine_above=0.1 * delta)
+    assert raw == pytest.approx(np.full(5, math.sqrt(2) * delta), rel=1e-8)
+    assert err == pytest.approx(np.full(5, delta), rel=1e-6)
+    # and a sample on the MAT stays at zero
+    assert O.soundness(box, mid[inner][:3], refine_above=0.0).max() <= 1e-9 * box.diag
+
+
 def test_special_samples(box: O.SolidBoundary) -> None:
     pts = [
         [A + 0.1, 1.0, 1.0],  # outside: a failure

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -22,7 +23,19 @@ class Spline:
     degree: int
 
     def __call__(self, u: ArrayLike) -> FloatArray:
-        return np.asarray(BSpline(self.knots, self.coeffs, self.degree, extrapolate=False)(u))
+        return np.asarray(self._bspline(u))
+
+    @cached_property
+    def _bspline(self) -> BSpline:
+        """scipy's evaluator, built once (its construction costs more than a call)."""
+        return BSpline(self.knots, self.coeffs, self.degree, extrapolate=False)
+
+    def derivative(self, nu: int = 1) -> Spline | None:
+        """The ``nu``-th derivative as a spline (None where it vanishes: ``nu > degree``)."""
+        if nu > self.degree:
+            return None
+        d = self._bspline.derivative(nu)
+        return Spline(np.asarray(d.t, dtype=float), np.asarray(d.c, dtype=float), int(d.k))
 
     @property
     def domain(self) -> tuple[float, float]:

@@ -534,13 +534,13 @@ class _Tracer:
         # steps across a convex corner take part in jump detection too: a nearly flat
         # corner's spoke meets the main axis at a branch point right next to it
         cand = ~self_[idx] & ~self_[nxt]
-        # a jump: the partner *point* moves much faster over this step than over the
-        # steps beside it, and keeps doing so as the step is halved (not its loop
-        # coordinate: a partner turning about a reflex vertex sweeps the vertex's
-        # element, angle x angle_scale, without moving, fast next to a small feature)
+        # a jump: the partner moves much faster over this step than over the steps
+        # beside it, and keeps doing so as the step is halved, and its *point* moves by
+        # more than tol (a partner turning about a reflex vertex sweeps the vertex's
+        # element, angle x angle_scale, without moving: fast next to a small feature)
         moved = np.hypot(*(S.partner_point[nxt] - S.partner_point[idx]).T)
         pgap = np.where(same_loop, moved, np.inf)
-        ratio = pgap / np.maximum(ds, 1e-300)
+        ratio = gap / np.maximum(ds, 1e-300)
         cont = np.where(cand & np.isfinite(ratio), ratio, np.inf)
         beside = np.minimum(np.roll(cont, 1), np.roll(cont, -1))
         beside = np.where(np.isfinite(beside), beside, 0.0)
@@ -550,7 +550,7 @@ class _Tracer:
         # corner's spoke meets the axis there), however small the step
         # (a step that itself crosses a convex corner has partners on both sides of it)
         apart |= self._partner_over_corner(S, idx, nxt, same_loop) & ~crosses
-        jump = cand & (pgap > cfg.tol) & ((ratio > 3.0 * beside + 1.0) | apart)
+        jump = cand & (gap > cfg.tol) & (pgap > cfg.tol) & ((ratio > 3.0 * beside + 1.0) | apart)
         split = jump & (ds > cfg.eps_s)
         # a jump between two distinct elements: bracket the point where they tie (a few
         # times per pair at most: a step may hold more than one event)
@@ -1067,27 +1067,71 @@ def _straight(tr: _Tracer, S: MapSamples, smp: IntArray) -> bool:
     return bool(kind[own[0]] == LINE and other[0] >= 0 and kind[other[0]] == LINE)
 
 
-def _nearest_on_spline(c: _FitCheck, centre: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """Distance from each exact midpoint centre to the nearest of 17 points of the spline
-    between the samples around it, and the spline's radius there. Deliberately coarse: it
-    also bounds how far the spline's parametrisation may drift from the loop coordinate's
-    (a Gauss-Newton projection instead let a spline pass its midpoints yet stray 4 tol
-    between them, next to a 1e-3 notch; points no more than tol/4 apart let a spline
-    stray 0.1 diag between sparse samples of a free-form profile)."""
+def _spline_miss(c: _FitCheck, centre: FloatArray, radius: FloatArray) -> FloatArray:
+    """How far the spline misses each exact check point ``(centre, radius)``: the distance
+    to its projection on the spline between the two samples around it (the nearest of 17
+    points, refined by Newton steps within the grid cells beside it) and the radius error
+    there. The projection alone would let a spline that strays between sparse samples pass
+    wherever it comes back near the exact point (0.1 diag between sparse samples of a
+    free-form profile); a spline is also failed, with the step's chord as its miss, where
+    its point at the parameter the chord lengths predict for the exact point, or any of
+    its 17 points, lies farther than an eighth of the chord from the exact polyline
+    through the two samples and the check point."""
     n = len(c.mids)
-    uu = c.ua[:, None] + (c.ub - c.ua)[:, None] * np.linspace(0.0, 1.0, 17)[None, :]
+    grid = np.linspace(0.0, 1.0, 17)
+    uu = c.ua[:, None] + (c.ub - c.ua)[:, None] * grid[None, :]
     cur = c.spline(uu.ravel()).reshape(n, 17, -1)
-    dist = np.linalg.norm(cur[..., :2] - centre[:, None, :], axis=2)
+    xy = cur[..., :2]
+    dist = np.linalg.norm(xy - centre[:, None, :], axis=2)
     j = np.argmin(dist, axis=1)
     r = np.arange(n)
-    return dist[r, j], cur[r, j, 2]
+    lo, hi = uu[r, np.maximum(j - 1, 0)], uu[r, np.minimum(j + 1, 16)]
+    u = uu[r, j]
+    d1, d2 = c.spline.derivative(1), c.spline.derivative(2)
+    assert d1 is not None  # fitted splines have degree >= 1
+    for _ in range(3):
+        e = c.spline(u)[:, :2] - centre
+        v1 = d1(u)[:, :2]
+        v2 = d2(u)[:, :2] if d2 is not None else np.zeros_like(v1)
+        g = np.einsum("ij,ij->i", e, v1)
+        h = np.einsum("ij,ij->i", v1, v1) + np.einsum("ij,ij->i", e, v2)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(h > 0, -g / h, 0.0)
+        u = np.clip(u + np.nan_to_num(step), lo, hi)
+    p = c.spline(u)
+    miss = np.maximum(np.linalg.norm(p[:, :2] - centre, axis=1), np.abs(p[:, 2] - radius))
+    # the drift and stray guards
+    a, b = xy[:, 0], xy[:, -1]
+    la = np.linalg.norm(centre - a, axis=1)
+    lb = np.linalg.norm(b - centre, axis=1)
+    chord = la + lb
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ustar = c.ua + (c.ub - c.ua) * np.where(chord > 0, la / chord, 0.5)
+    drift = np.linalg.norm(c.spline(ustar)[:, :2] - centre, axis=1)
+    band = np.minimum(
+        _to_segment(xy, a[:, None, :], centre[:, None, :]),
+        _to_segment(xy, centre[:, None, :], b[:, None, :]),
+    ).max(axis=1)
+    stray = np.maximum(drift, band) > 0.125 * chord
+    return np.where(stray, np.maximum(miss, chord), miss)
+
+
+def _to_segment(p: FloatArray, a: FloatArray, b: FloatArray) -> FloatArray:
+    """Distance from points ``p (..., 2)`` to the segments ``a``-``b`` (broadcast)."""
+    ab = b - a
+    ll = np.einsum("...j,...j->...", ab, ab)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(ll > 0, np.einsum("...j,...j->...", p - a, ab) / ll, 0.0)
+    t = np.clip(t, 0.0, 1.0)
+    return np.asarray(np.linalg.norm(p - (a + t[..., None] * ab), axis=-1))
 
 
 def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) -> list[MapSamples]:
     """Samples in the steps whose exact midpoints the fitted splines miss by more than
     tol/2 (all branches' midpoints are evaluated at once). A step is split in ``k``
-    equal parts, ``k`` from the miss ``e`` and the ``h^4`` error of a cubic
-    interpolant, ``k = (4 e / tol)^(1/4)`` (2 to 8): a wide miss takes one round of
+    equal parts, ``k = (4 e / tol)^(1/2)`` (2 to 8) for a miss ``e``: the ``h^2`` error
+    of an interpolating cubic next to a joint where the branch's curvature jumps (the
+    ``h^4`` of a smooth stretch would ask fewer), so a wide miss takes one round of
     refitting, not several."""
     checks = [c for c in (_fit_check(tr, S, iv) for iv in kept) if c is not None]
     if not checks:
@@ -1100,8 +1144,7 @@ def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) 
     for c in checks:
         sl = slice(k, k + len(c.mids))
         k += len(c.mids)
-        dist, rad = _nearest_on_spline(c, centre[sl])
-        miss = np.maximum(dist, np.abs(rad - radius[sl]))
+        miss = _spline_miss(c, centre[sl], radius[sl])
         bad = (miss > 0.5 * tol) & ~is_self[sl]
         # (next to a curvature-centre end point: the end point rules there)
         if not np.any(bad):
