@@ -22,6 +22,7 @@ import numpy as np
 from hypothesis import assume
 from hypothesis import strategies as st
 from numpy.typing import ArrayLike, NDArray
+from OCP.BinTools import BinTools
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepTools import BRepTools
@@ -157,7 +158,9 @@ def dump_on_failure(
             Path(dump).mkdir(parents=True, exist_ok=True)
             path = Path(dump) / f"{label.replace(' ', '_')}-{abs(hash(shape)) % 10**8}.brep"
             BRepTools.Write_s(shape, str(path))
-            print(f"failing shape written to {path}")
+            # the text BREP rounds coordinates (to ~1e-15 relative); the binary one is exact
+            BinTools.Write_s(shape, str(path.with_suffix(".bbrep")))
+            print(f"failing shape written to {path} (exact copy: .bbrep)")
         raise
 
 

@@ -137,3 +137,18 @@ def test_random_line_arc_fillet_mix(face: Any, seed: int) -> None:
     check_with_oracles(
         F.place(face, F.random_placement(seed)), "fillets", n_boundary=80, per_branch=12
     )
+
+
+def test_fuzzed_blob_has_no_stray_curvature_centre() -> None:
+    """A blob of the 2026-12-01 fuzz run (two equal radii; placed by seed 0): a spurious
+    curvature-centre event 0.006 diag off the axis, next to a branch point, became a node
+    that no branch reaches. Every node of a face with branches is on one (the axis is
+    connected), and the oracles pass."""
+    radii = [0.6690578418133569, 0.5048941946465891, 0.6015819204373765]
+    face = F.place(
+        F.bspline_blob([*radii, 0.7293302066208467, 0.7293302066208467]), F.random_placement(0)
+    )
+    res = compute(face)
+    used = {n for b in res.branches for n in (b.start, b.end) if n is not None}
+    assert used == {n.index for n in res.nodes}
+    check_with_oracles(face, "fuzzed blob", n_boundary=80, per_branch=12)

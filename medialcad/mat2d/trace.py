@@ -19,6 +19,7 @@ within half the tolerance.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from dataclasses import dataclass, field
@@ -1292,7 +1293,32 @@ def _assemble(
                 spline,
             )
         )
+    nodes, branches = _drop_stray_ends(nodes, branches)
     return MedialGraph(frame, tol, tuple(nodes), tuple(branches), elements)
+
+
+def _drop_stray_ends(nodes: list[Node], branches: list[Branch]) -> tuple[list[Node], list[Branch]]:
+    """Drop curvature-centre nodes that no branch reaches, unless there is no branch at all
+    (a disk: its MAT is that one point). The medial axis is connected, so such a node is a
+    spurious self-partner event (seen once in thousands of random B-spline blobs: a node
+    0.006 diag off the axis next to a branch point, the branches all sound)."""
+    if not branches:
+        return nodes, branches
+    used = {n for b in branches for n in (b.start, b.end) if n is not None}
+    keep = [n for n in nodes if n.index in used or n.kind is not NodeKind.CURVATURE_CENTRE]
+    if len(keep) == len(nodes):
+        return nodes, branches
+    new = {n.index: k for k, n in enumerate(keep)}
+    nodes = [dataclasses.replace(n, index=new[n.index]) for n in keep]
+    branches = [
+        dataclasses.replace(
+            b,
+            start=None if b.start is None else new[b.start],
+            end=None if b.end is None else new[b.end],
+        )
+        for b in branches
+    ]
+    return nodes, branches
 
 
 _THIRDS = np.array([[0.0], [1 / 3], [2 / 3], [1.0]])  # control points of a straight cubic

@@ -548,13 +548,14 @@ def _refine(
     """Insert exact samples until the interpolated rows are within a fraction of ``tol``.
 
     Feet (which become the rims on the solid's boundary) must be much closer than the
-    tolerance (0.02 tol); centres follow the branch's spline within 0.1 tol.
+    tolerance (0.02 tol); centres follow the branch's spline within 0.1 tol; no step is
+    more than 3 times a neighbouring one.
     """
     from scipy.interpolate import make_interp_spline
 
     cap = max(4 * len(w), 200)  # near a curvature-centre end the feet move like a square
     # root of the branch length: interpolation converges slowly there, stop refining
-    for _ in range(8):
+    for _ in range(16):
         if len(w) < 2 or len(w) >= cap:
             break
         k = min(3, len(w) - 1)
@@ -568,7 +569,13 @@ def _refine(
         bad = np.linalg.norm(fit_c - ex, axis=1) > 0.1 * tol
         bad |= np.linalg.norm(fit_a - ex_a, axis=1) > 0.02 * tol
         bad |= np.linalg.norm(fit_b - ex_b, axis=1) > 0.02 * tol
-        bad &= np.diff(w) > 1e-5
+        # and graded rows: a step more than 3 times its neighbour's is split too (the rows
+        # are also interpolated into curves no check sees here, such as a revolution's
+        # level curve on the mid sheet: 108 tol after steps of 0.03 looped on itself)
+        dw = np.diff(w)
+        beside = np.minimum(np.r_[np.inf, dw[:-1]], np.r_[dw[1:], np.inf])
+        bad |= dw > 3.0 * beside
+        bad &= dw > 1e-5
         if not np.any(bad):
             break
         idx = np.nonzero(bad)[0]
