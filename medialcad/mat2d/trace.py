@@ -1068,7 +1068,7 @@ def _straight(tr: _Tracer, S: MapSamples, smp: IntArray) -> bool:
     return bool(kind[own[0]] == LINE and other[0] >= 0 and kind[other[0]] == LINE)
 
 
-def _spline_miss(c: _FitCheck, centre: FloatArray, radius: FloatArray) -> FloatArray:
+def _spline_miss(c: _FitCheck, centre: FloatArray, radius: FloatArray, ok: float) -> FloatArray:
     """How far the spline misses each exact check point ``(centre, radius)``: the distance
     to its projection on the spline between the two samples around it (the nearest of 17
     points, refined by Newton steps within the grid cells beside it) and the radius error
@@ -1077,7 +1077,8 @@ def _spline_miss(c: _FitCheck, centre: FloatArray, radius: FloatArray) -> FloatA
     free-form profile); a spline is also failed, with the step's chord as its miss, where
     its point at the parameter the chord lengths predict for the exact point, or any of
     its 17 points, lies farther than an eighth of the chord from the exact polyline
-    through the two samples and the check point."""
+    through the two samples and the check point. Check points whose nearest grid point is
+    already within ``ok`` skip the Newton steps (the projection is no farther)."""
     n = len(c.mids)
     grid = np.linspace(0.0, 1.0, 17)
     uu = c.ua[:, None] + (c.ub - c.ua)[:, None] * grid[None, :]
@@ -1086,21 +1087,26 @@ def _spline_miss(c: _FitCheck, centre: FloatArray, radius: FloatArray) -> FloatA
     dist = np.linalg.norm(xy - centre[:, None, :], axis=2)
     j = np.argmin(dist, axis=1)
     r = np.arange(n)
-    lo, hi = uu[r, np.maximum(j - 1, 0)], uu[r, np.minimum(j + 1, 16)]
-    u = uu[r, j]
-    d1, d2 = c.spline.derivative(1), c.spline.derivative(2)
-    assert d1 is not None  # fitted splines have degree >= 1
-    for _ in range(3):
-        e = c.spline(u)[:, :2] - centre
-        v1 = d1(u)[:, :2]
-        v2 = d2(u)[:, :2] if d2 is not None else np.zeros_like(v1)
-        g = np.einsum("ij,ij->i", e, v1)
-        h = np.einsum("ij,ij->i", v1, v1) + np.einsum("ij,ij->i", e, v2)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = np.where(h > 0, -g / h, 0.0)
-        u = np.clip(u + np.nan_to_num(step), lo, hi)
-    p = c.spline(u)
-    miss = np.maximum(np.linalg.norm(p[:, :2] - centre, axis=1), np.abs(p[:, 2] - radius))
+    miss = np.maximum(dist[r, j], np.abs(cur[r, j, 2] - radius))
+    far = np.nonzero(miss > ok)[0]
+    if len(far):
+        jf, cf = j[far], centre[far]
+        lo, hi = uu[far, np.maximum(jf - 1, 0)], uu[far, np.minimum(jf + 1, 16)]
+        u = uu[far, jf]
+        d1, d2 = c.spline.derivative(1), c.spline.derivative(2)
+        assert d1 is not None  # fitted splines have degree >= 1
+        for _ in range(3):
+            e = c.spline(u)[:, :2] - cf
+            v1 = d1(u)[:, :2]
+            v2 = d2(u)[:, :2] if d2 is not None else np.zeros_like(v1)
+            g = np.einsum("ij,ij->i", e, v1)
+            h = np.einsum("ij,ij->i", v1, v1) + np.einsum("ij,ij->i", e, v2)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                step = np.where(h > 0, -g / h, 0.0)
+            u = np.clip(u + np.nan_to_num(step), lo, hi)
+        p = c.spline(u)
+        proj = np.maximum(np.linalg.norm(p[:, :2] - cf, axis=1), np.abs(p[:, 2] - radius[far]))
+        miss[far] = np.minimum(miss[far], proj)
     # the drift and stray guards
     a, b = xy[:, 0], xy[:, -1]
     la = np.linalg.norm(centre - a, axis=1)
@@ -1145,7 +1151,7 @@ def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) 
     for c in checks:
         sl = slice(k, k + len(c.mids))
         k += len(c.mids)
-        miss = _spline_miss(c, centre[sl], radius[sl])
+        miss = _spline_miss(c, centre[sl], radius[sl], 0.5 * tol)
         bad = (miss > 0.5 * tol) & ~is_self[sl]
         # (next to a curvature-centre end point: the end point rules there)
         if not np.any(bad):
