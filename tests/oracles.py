@@ -39,6 +39,7 @@ from OCP.TColStd import TColStd_Array1OfReal
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_OUT, TopAbs_VERTEX
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
+from OCP.TopTools import TopTools_IndexedMapOfShape
 from scipy.optimize import minimize_scalar
 from scipy.spatial import cKDTree
 
@@ -92,14 +93,12 @@ def _vertex(p: FloatArray) -> TopoDS_Shape:
 
 
 def _subshapes(shape: TopoDS_Shape, kind: Any) -> list[TopoDS_Shape]:
-    out: list[TopoDS_Shape] = []
-    ex = TopExp_Explorer(shape, kind)
-    while ex.More():
-        s = ex.Current()
-        if not any(s.IsSame(o) for o in out):
-            out.append(s)
-        ex.Next()
-    return out
+    """The distinct sub-shapes of ``kind``, in exploration order (a hashed map: the
+    pairwise ``IsSame`` scan this replaced was quadratic, minutes on a sampled method's
+    polyline of thousands of edges)."""
+    m = TopTools_IndexedMapOfShape()
+    TopExp.MapShapes_s(shape, kind, m)
+    return [m.FindKey(i) for i in range(1, m.Extent() + 1)]
 
 
 class _EdgeSamples:
@@ -285,6 +284,7 @@ class FaceBoundary:
         check = np.array([self.curves[i].GetType() not in exact for i in self._sedge])
         self._check_idx = np.flatnonzero(check)
         self._tree = cKDTree(self._spts[check]) if check.any() else None
+        self._all_tree = cKDTree(self._spts)
 
     def _project_local(
         self, x: FloatArray, i: int, t: float, a: float, b: float
@@ -381,6 +381,10 @@ class FaceBoundary:
         e2 = np.cross(n, e1)
         # the moved points must stay on q's side of the boundary: within half the
         # clearance (a 1e-6 diag step left a point 7e-5 inside a 1e-3 notch's corner)
+        if clearance <= 0:
+            # a lower bound from the dense boundary samples (every boundary point is within
+            # a sample step of one); the exact distance only within a step of the boundary
+            clearance = float(self._all_tree.query(q)[0]) - self._sh
         if clearance <= 0:
             saved = self.last_foot, self.last_vertex
             clearance = self.nearest(q)[0]
