@@ -55,7 +55,7 @@ from OCP.BRepTools import BRepTools
 from OCP.Extrema import Extrema_ExtAlgo, Extrema_ExtFlag
 from OCP.GCPnts import GCPnts_AbscissaPoint
 from OCP.GeomAbs import GeomAbs_Plane
-from OCP.gp import gp_Pnt2d
+from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
 from OCP.TopAbs import (
     TopAbs_EDGE,
@@ -666,6 +666,64 @@ class SolidBoundary:
         )
         return float(min(best, res.fun))
 
+    def local_medial_distance_at_edge(
+        self, p: FloatArray, q: FloatArray, window: float
+    ) -> float | None:
+        """Distance from ``p`` to the true medial points of the balls touching the edge
+        through ``q`` (a reflex edge: a foot on no face) near ``q``: a Nelder-Mead search over
+        the position ``t`` along the edge and the direction's angle ``theta`` about it (the
+        centre lies in the edge's normal plane). None if no edge passes through ``q``."""
+        vx, best = _vertex(q), (math.inf, -1, 0.0)
+        for i, ext in enumerate(self._ext_e):
+            lo, hi = self._ebox[i]
+            if np.any(q < lo - 1e-6 * self.diag) or np.any(q > hi + 1e-6 * self.diag):
+                continue
+            ext.Perform(vx)
+            if not ext.IsDone():
+                continue
+            for k in range(1, ext.NbExt() + 1):
+                dk = math.sqrt(ext.SquareDistance(k))
+                if dk < best[0]:
+                    best = (dk, i, float(ext.Parameter(k)))
+        if best[1] < 0 or best[0] > 1e-7 * self.diag:
+            return None
+        curve = BRepAdaptor_Curve(self._edges[best[1]])
+        t0, t_lo, t_hi = best[2], curve.FirstParameter(), curve.LastParameter()
+        d = float(np.linalg.norm(p - q))
+        u0 = (p - q) / d
+
+        def frame(t: float) -> tuple[FloatArray, FloatArray, FloatArray, float]:
+            pt, v1 = gp_Pnt(), gp_Vec()
+            curve.D1(t, pt, v1)
+            tan = _xyz(v1)
+            speed = max(float(np.linalg.norm(tan)), 1e-300)
+            tan = tan / speed
+            n1 = u0 - (u0 @ tan) * tan
+            n1 = n1 / max(float(np.linalg.norm(n1)), 1e-300)
+            return _xyz(pt), n1, np.cross(tan, n1), speed
+
+        def f(x: FloatArray) -> float:
+            t = min(max(t0 + x[0], t_lo), t_hi)
+            e, n1, n2, _ = frame(t)
+            w = math.cos(x[1]) * n1 + math.sin(x[1]) * n2
+            s = ray_depth(self, e, w, check_inside=False)
+            return float(np.linalg.norm(p - (e + s * w)))
+
+        speed = frame(t0)[3]
+        simplex = np.array([[0.0, 0.0], [0.25 * window / speed, 0.0], [0.0, 0.25 * window / d]])
+        res = minimize(
+            f,
+            np.zeros(2),
+            method="Nelder-Mead",
+            options={
+                "initial_simplex": simplex,
+                "xatol": 1e-12,
+                "fatol": 1e-3 * self.eps,
+                "maxfev": 150,
+            },
+        )
+        return float(min(f(np.zeros(2)), res.fun))
+
     def sampled_depth_bound(self, q: FloatArray, u: FloatArray) -> float:
         """An upper bound of the ray depth: the least radius of the balls centred on
         ``q + s u`` through ``q`` that contain a known boundary point ``y``:
@@ -868,7 +926,7 @@ def soundness(
     tol = 1e-6 * sb.diag if rim_tol is None else rim_tol
     pts = _points(points)
     errs = np.empty(len(pts))
-    where: list[tuple[int, float, Any, Any]] = []
+    where: list[tuple[int, FloatArray, Any, Any]] = []
     for k, p in enumerate(pts):
         d, q, face, uv = sb.nearest_support(p)
         if d < tol:
@@ -881,15 +939,18 @@ def soundness(
         kappa_r = sb.curvature_bound(face, uv) if face is not None and uv is not None else math.inf
         s = ray_depth(sb, q, (p - q) / d, guess=d, max_depth=max(kappa_r, d), check_inside=False)
         errs[k] = abs(s - d)
-        where.append((k, d, face, uv))
+        where.append((k, q, face, uv))
     todo = [w for w in where if refine_above is not None and errs[w[0]] > refine_above]
     if len(todo) <= max_refine:  # (many more: a broken result, whose verdict stands)
-        for k, _, face, uv in todo:
-            if face is None or uv is None:
-                continue
+        for k, q, face, uv in todo:
             e = float(errs[k])
             window = 4.0 * math.sqrt(e * sb.diag) + 4.0 * e
-            errs[k] = min(e, sb.local_medial_distance(pts[k], int(face), uv, window))
+            if face is not None and uv is not None:
+                errs[k] = min(e, sb.local_medial_distance(pts[k], int(face), uv, window))
+            else:  # a foot on an edge (a reflex edge)
+                got = sb.local_medial_distance_at_edge(pts[k], q, window)
+                if got is not None:
+                    errs[k] = min(e, got)
     return errs
 
 
