@@ -650,21 +650,8 @@ class SolidBoundary:
             m = self.medial_point(face, (uu, vv))
             return math.inf if m is None else float(np.linalg.norm(p - m))
 
-        best = f(np.zeros(2))
         hu, hv = 0.25 * window / su, 0.25 * window / sv
-        simplex = np.array([[0.0, 0.0], [hu, 0.0], [0.0, hv]])
-        res = minimize(
-            f,
-            np.zeros(2),
-            method="Nelder-Mead",
-            options={
-                "initial_simplex": simplex,
-                "xatol": 1e-9 * max(hu, hv),
-                "fatol": 1e-3 * self.eps,
-                "maxfev": 150,
-            },
-        )
-        return float(min(best, res.fun))
+        return _local_min_2d(f, hu, hv, 1e-9 * max(hu, hv), 1e-3 * self.eps)
 
     def local_medial_distance_at_edge(
         self, p: FloatArray, q: FloatArray, window: float
@@ -710,19 +697,7 @@ class SolidBoundary:
             return float(np.linalg.norm(p - (e + s * w)))
 
         speed = frame(t0)[3]
-        simplex = np.array([[0.0, 0.0], [0.25 * window / speed, 0.0], [0.0, 0.25 * window / d]])
-        res = minimize(
-            f,
-            np.zeros(2),
-            method="Nelder-Mead",
-            options={
-                "initial_simplex": simplex,
-                "xatol": 1e-12,
-                "fatol": 1e-3 * self.eps,
-                "maxfev": 150,
-            },
-        )
-        return float(min(f(np.zeros(2)), res.fun))
+        return _local_min_2d(f, 0.25 * window / speed, 0.25 * window / d, 1e-12, 1e-3 * self.eps)
 
     def sampled_depth_bound(self, q: FloatArray, u: FloatArray) -> float:
         """An upper bound of the ray depth: the least radius of the balls centred on
@@ -793,6 +768,15 @@ class SolidBoundary:
             if best is None or cand[0] < best[0]:
                 best = cand
         return best
+
+
+def _local_min_2d(f: Any, h1: float, h2: float, xatol: float, fatol: float) -> float:
+    """The least value of ``f`` over offsets ``(x1, x2)`` near 0: ``f(0)`` or a
+    Nelder-Mead search from the simplex with steps ``h1``, ``h2`` (at most 150 values)."""
+    simplex = np.array([[0.0, 0.0], [h1, 0.0], [0.0, h2]])
+    options = {"initial_simplex": simplex, "xatol": xatol, "fatol": fatol, "maxfev": 150}
+    res = minimize(f, np.zeros(2), method="Nelder-Mead", options=options)
+    return float(min(f(np.zeros(2)), res.fun))
 
 
 def _iter(shape: TopoDS_Shape, kind: Any) -> list[TopoDS_Shape]:
