@@ -1165,10 +1165,9 @@ def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) 
         new_s = np.unique((lo[:, None] + width[:, None] * frac)[take])
         add_loop.append(np.full(len(new_s), c.loop, dtype=np.int64))
         add_s.append(new_s)
-    if not add_s:
+    if not add_s:  # (every added array is non-empty)
         return []
-    loop, s = np.concatenate(add_loop), np.concatenate(add_s)
-    return [tr.eval(loop, s)] if len(s) else []
+    return [tr.eval(np.concatenate(add_loop), np.concatenate(add_s))]
 
 
 _QUARTERS = np.array([0.5, 0.25, 0.75])  # check points of a step over a joint

@@ -571,7 +571,8 @@ def _refine(
         bad |= np.linalg.norm(fit_b - ex_b, axis=1) > 0.02 * tol
         # and graded rows: a step more than 3 times its neighbour's is split too (the rows
         # are also interpolated into curves no check sees here, such as a revolution's
-        # level curve on the mid sheet: 108 tol after steps of 0.03 looped on itself)
+        # level curve on the mid sheet; added against a near-circular blob's level curve
+        # that turned back on itself, which it did not cure: see that test's xfail)
         dw = np.diff(w)
         beside = np.minimum(np.r_[np.inf, dw[:-1]], np.r_[dw[1:], np.inf])
         bad |= dw > 3.0 * beside
