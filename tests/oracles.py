@@ -435,14 +435,18 @@ class FaceBoundary:
         (both sides of a smooth joint, or of the seam of a closed edge); empty at a corner."""
         out = []
         for i, e in enumerate(self.edges):
-            ex = TopExp_Explorer(e, TopAbs_VERTEX)
-            while ex.More():
-                if ex.Current().IsSame(vertex):
-                    t = BRep_Tool.Parameter_s(vertex, e)
+            c = self.curves[i]
+            # both ends of a closed edge (the seam of a periodic B-spline, perhaps only C1
+            # there: the two sides' curvatures differ); the parameter of the vertex alone
+            # names one of them
+            for end, t in (
+                (TopExp.FirstVertex_s(e), c.FirstParameter()),
+                (TopExp.LastVertex_s(e), c.LastParameter()),
+            ):
+                if end.IsSame(vertex):
                     _, nrm = self.inward_normal(i, t)
                     if float(nrm @ u) > 1 - 1e-10:
                         out.append((i, float(t)))
-                ex.Next()
         return out
 
     def curvature_radius(self, i: int, t: float) -> float:

@@ -612,7 +612,32 @@ class SolidBoundary:
     def curvature_bound(self, face: int, uv: ArrayLike) -> float:
         """``1/k`` for the largest principal curvature ``k`` of face ``face`` at ``uv`` bending
         towards the interior (``inf`` if none does): no inscribed ball tangent there is larger."""
-        props = BRepLProp_SLProps(self._surf[face], float(uv[0]), float(uv[1]), 2, 1e-12)
+        return min(self._curvature_bound(face, w) for w in self._seam_sides(face, uv))
+
+    def _seam_sides(self, face: int, uv: ArrayLike) -> list[tuple[float, float]]:
+        """``uv`` and, on the seam of a face closed in a parameter, the same point from the
+        other end of the range (a periodic B-spline can be only C1 at its seam: there its two
+        sides' curvatures differ, and the larger bounds the ball)."""
+        s = self._surf[face]
+        u, v = float(uv[0]), float(uv[1])
+        out = [(u, v)]
+        here = _xyz(s.Value(u, v))
+        ranges = (
+            (s.FirstUParameter(), s.LastUParameter()),
+            (s.FirstVParameter(), s.LastVParameter()),
+        )
+        for axis, (lo, hi) in enumerate(ranges):
+            x, slack = out[0][axis], 1e-9 * (hi - lo)
+            alt = hi if abs(x - lo) <= slack else lo if abs(x - hi) <= slack else None
+            if alt is None:
+                continue
+            w = (alt, v) if axis == 0 else (u, alt)
+            if np.linalg.norm(_xyz(s.Value(*w)) - here) <= 1e-9 * self.diag:
+                out.append(w)
+        return out
+
+    def _curvature_bound(self, face: int, uv: tuple[float, float]) -> float:
+        props = BRepLProp_SLProps(self._surf[face], uv[0], uv[1], 2, 1e-12)
         if not props.IsCurvatureDefined():
             return math.inf
         # curvatures are signed towards D1U x D1V; the inward normal is that times the sign

@@ -1116,21 +1116,12 @@ def test_nearly_degenerate_branch_points(angle_deg: float, skew: float) -> None:
 # --------------------------------------------------------------------------- B-spline profiles
 
 BLOB = (1.0, 0.7, 0.9, 0.6, 0.8)  # radii of a periodic B-spline profile (tests.faces)
-SECTION_KINK = (
-    "full revolution of a smooth B-spline profile: the recognised meridian section "
-    "(occ/recognize.py:_section) is one 128-pole B-spline closing with a 2.3e-6 rad tangent "
-    "kink (> ANGLE_TOL 1e-6) at x 2.5; the 2D MAT takes it for a convex corner and grows "
-    "branches to it (2D soundness 1692 and 231 tol): 104 of 256 sheet samples unsound "
-    "(6.5e-2 diag), radius error 2.6e-3 diag, chi 4 != 0"
-)
 
 
 @pytest.mark.parametrize(
     "angle",
     [
-        pytest.param(
-            TWO_PI, id="full", marks=[pytest.mark.xfail(strict=False, reason=SECTION_KINK)]
-        ),
+        pytest.param(TWO_PI, id="full"),
         pytest.param(TWO_PI / 3, id="120deg"),
     ],
 )
@@ -1162,7 +1153,6 @@ def test_near_circular_bspline_profile_small_angle() -> None:
     assert_oracles(num)
 
 
-@pytest.mark.xfail(strict=False, reason=SECTION_KINK)
 @HYPO
 @given(
     face=F.random_bspline_blob(),

@@ -313,15 +313,46 @@ class _Tracer:
         # staying on the curve that holds it
         pad = 0.5 * (b - a) + 1e-3 * self.cfg.spacing
         e = self.b.element_at(loop, float((0.5 * (a + b)) % length))
+        lo, hi = -np.inf, np.inf
         if e.piece is not None and e.length < length:
             oa = (a - e.s0) % length
-            ob = oa + (b - a)
-            if ob <= e.length:
-                a, b = e.s0 + max(oa - pad, 0.0), e.s0 + min(ob + pad, e.length)
+            lo, hi = a - oa, a - oa + e.length
+            a, b = max(a - pad, lo), min(b + pad, hi)
         else:
             a, b = a - pad, b + pad
+            lo, hi = 0.5 * (a + b) - 0.5 * length, 0.5 * (a + b) + 0.5 * length
         if b <= a:
             b = a + 1e-12
+        best = self._golden_max(loop, a, b)
+        # the maximum can lie outside the samples' bracket: at a curvature jump (a C1
+        # seam or knot, the high side's curvature falling away from it) the self samples
+        # start only a little after it. While the maximum sits at an end of the bracket
+        # that is not the end of the curve, search again beyond that end, twice as wide
+        width = b - a
+        for _ in range(12):
+            x, k = best[5], best[2]
+            stop = 4e-3 * self.cfg.eps_s
+            if x - a < stop and a > lo:
+                b, a = a + stop, max(lo, a - width)
+            elif b - x < stop and b < hi:
+                a, b = b - stop, min(hi, b + width)
+            else:
+                break
+            width *= 2.0
+            again = self._golden_max(loop, a, b)
+            if again[2] < k:
+                break
+            best = again
+        p, n, k, ei, t, _ = best
+        if k <= 0:
+            raise ComputationError("self-partner point on a non-convex boundary stretch")
+        return p + n / k, 1.0 / k, p, ei, t
+
+    def _golden_max(
+        self, loop: int, a: float, b: float
+    ) -> tuple[FloatArray, FloatArray, float, int, float, float]:
+        """The boundary frame at the curvature maximum in ``[a, b]`` (golden section), and
+        its loop coordinate."""
         g = (np.sqrt(5) - 1) / 2
         x1, x2 = b - g * (b - a), a + g * (b - a)
         k1, k2 = self.frame_s(loop, x1)[2], self.frame_s(loop, x2)[2]
@@ -336,18 +367,16 @@ class _Tracer:
                 a, x1, k1 = x1, x2, k2
                 x2 = a + g * (b - a)
                 k2 = self.frame_s(loop, x2)[2]
-        p, n, k, ei, t = self.frame_s(loop, 0.5 * (a + b))
-        # a loop of one closed curve (a periodic B-spline, perhaps only C1 at its seam):
-        # the middle can land on the seam and read the low side's curvature (a node 0.1
-        # diag off); the last probes either side of it rule there
-        if self.b.elements[ei].length >= self.L[loop] * (1 - 1e-12):
-            for x in (x1, x2):
-                q = self.frame_s(loop, x)
-                if q[2] > k:
-                    p, n, k, ei, t = q
-        if k <= 0:
-            raise ComputationError("self-partner point on a non-convex boundary stretch")
-        return p + n / k, 1.0 / k, p, ei, t
+        x = 0.5 * (a + b)
+        p, n, k, ei, t = self.frame_s(loop, x)
+        # at a curvature jump (a periodic B-spline only C1 at its seam, a C1 knot) the
+        # middle can land on the low side (a node 0.1 diag off): the last probes either
+        # side of it rule there
+        for xp in (x1, x2):
+            q = self.frame_s(loop, xp)
+            if q[2] > k:
+                (p, n, k, ei, t), x = q, xp
+        return p, n, k, ei, t, x
 
     def resolve(self, S: MapSamples) -> tuple[MapSamples, list[_Event], bool]:
         """Refine the samples until every step is continuous or an event is isolated.

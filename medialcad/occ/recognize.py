@@ -63,6 +63,7 @@ from medialcad.errors import (
 )
 from medialcad.frame import Frame
 from medialcad.occ.io import occ_guard
+from medialcad.occ.meridian import exact_meridian
 from medialcad.occ.shapes import as_topods, compound, edges, faces, solids_or_shells
 from medialcad.recognition import Extrusion, Revolution, SolidKind
 
@@ -540,6 +541,7 @@ def _recognize_revolution(
                 frame, profile = _full_section(
                     solid, origin, d, diag + float(np.linalg.norm(origin))
                 )
+                profile = exact_meridian(profile, [f.face for f in data], frame, 10 * lin_tol)
             else:
                 frame = Frame(origin, got.start_dir, d)
                 profile = _merge_faces([f.face for f in got.start], "start cap")

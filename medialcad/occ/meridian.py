@@ -1,0 +1,287 @@
+"""The exact meridian section of a full revolution.
+
+A full revolution has no cap to read the profile from: it is cut by a half-plane through
+the axis (a Boolean common). OCC's plane/surface intersection approximates where a face
+is a general surface of revolution (a B-spline profile revolved: the section is a
+128-pole B-spline that closes with a tangent kink, which the 2D MAT then reads as a
+corner). On such a face the section is known exactly: the surface's iso-curve at the
+angle of the half-plane (the basis curve, rotated). :func:`exact_meridian` rebuilds the
+Boolean section with those curves, edge by edge, and keeps the Boolean's own edges
+elsewhere (lines and circles of analytic faces are exact already).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRepBuilderAPI import (
+    BRepBuilderAPI_MakeEdge,
+    BRepBuilderAPI_MakeFace,
+    BRepBuilderAPI_MakeVertex,
+    BRepBuilderAPI_MakeWire,
+)
+from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepGProp import BRepGProp
+from OCP.BRepTools import BRepTools, BRepTools_WireExplorer
+from OCP.Geom import (
+    Geom_ConicalSurface,
+    Geom_CylindricalSurface,
+    Geom_RectangularTrimmedSurface,
+    Geom_SphericalSurface,
+    Geom_SurfaceOfRevolution,
+    Geom_ToroidalSurface,
+)
+from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
+from OCP.gp import gp_Pnt, gp_Vec
+from OCP.GProp import GProp_GProps
+from OCP.ShapeAnalysis import ShapeAnalysis_Surface
+from OCP.TopAbs import TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex
+
+from medialcad.frame import Frame
+from medialcad.occ.io import is_occ_exception
+
+__all__ = ["exact_meridian"]
+
+FloatArray = NDArray[np.float64]
+log = logging.getLogger(__name__)
+_SWEPT = (
+    Geom_SurfaceOfRevolution,
+    Geom_CylindricalSurface,
+    Geom_ConicalSurface,
+    Geom_SphericalSurface,
+    Geom_ToroidalSurface,
+)
+
+
+class _RebuildError(Exception):
+    """The exact section could not be assembled (the Boolean's is kept)."""
+
+
+@dataclass(frozen=True)
+class _Piece:
+    """One edge of a section wire, in wire order: its curve, the parameters at its start
+    and end (in wire order; ``t0 > t1`` when the wire runs against the curve), the two
+    points, and whether the curve is an exact iso-curve."""
+
+    curve: Any
+    t0: float
+    t1: float
+    start: FloatArray
+    end: FloatArray
+    exact: bool
+
+
+def _xyz(p: Any) -> FloatArray:
+    return np.array([p.X(), p.Y(), p.Z()], dtype=float)
+
+
+def _value(curve: Any, t: float) -> FloatArray:
+    return _xyz(curve.Value(float(t)))
+
+
+def _revolution_surfaces(
+    faces: list[TopoDS_Face], frame: Frame, tol: float
+) -> list[tuple[Any, tuple[float, ...]]]:
+    """The surfaces of ``faces`` whose first parameter is the angle about the solid's axis
+    (surfaces of revolution, cylinders, cones, spheres and tori on that axis): their
+    iso-curves are meridians."""
+    out = []
+    for f in faces:
+        s = BRep_Tool.Surface_s(f)
+        if isinstance(s, Geom_RectangularTrimmedSurface):
+            s = s.BasisSurface()
+        if not isinstance(s, _SWEPT):
+            continue
+        ax = s.Axis()
+        d = _xyz(ax.Direction())
+        off = _xyz(ax.Location()) - frame.origin
+        if (
+            np.linalg.norm(np.cross(d, frame.ydir)) > 1e-9
+            or np.linalg.norm(off - (off @ frame.ydir) * frame.ydir) > tol
+        ):
+            continue
+        out.append((s, tuple(BRepTools.UVBounds_s(f))))
+    return out
+
+
+def _tangent(curve: Any, t: float) -> FloatArray:
+    p, v = gp_Pnt(), gp_Vec()
+    curve.D1(float(t), p, v)
+    return np.array([v.X(), v.Y(), v.Z()], dtype=float)
+
+
+def _project(curve: Any, p: FloatArray) -> tuple[float, float]:
+    """Parameter and distance of the nearest point of ``curve`` to ``p``."""
+    proj = GeomAPI_ProjectPointOnCurve(gp_Pnt(*p), curve)
+    if proj.NbPoints() == 0:
+        return math.nan, math.inf
+    return float(proj.LowerDistanceParameter()), float(proj.LowerDistance())
+
+
+def _iso_piece(
+    surfaces: list[tuple[Any, tuple[float, ...]]],
+    old: _Piece,
+    frame: Frame,
+    tol: float,
+) -> _Piece | None:
+    """The exact iso-curve piece replacing ``old``, if ``old`` lies on one of ``surfaces``."""
+    mid_t = 0.5 * (old.t0 + old.t1)
+    mid = _value(old.curve, mid_t)
+    for s, (_u0, _u1, v0, v1) in surfaces:
+        sas = ShapeAnalysis_Surface(s)
+        uv = sas.ValueOfUV(gp_Pnt(*mid), tol)
+        if sas.Gap() > tol:
+            continue
+        u = uv.X()
+        # the half-plane's angle exactly: turn the iso-curve into the section plane
+        for _ in range(2):
+            q = _value(s.UIso(u), uv.Y()) - frame.origin
+            # the frame: x radial, y along the axis, z normal to the section plane
+            off = math.atan2(-float(q @ frame.zdir), float(q @ frame.xdir))
+            sign = 1.0 if float(_xyz(s.Axis().Direction()) @ frame.ydir) > 0 else -1.0
+            u -= sign * off
+        iso = s.UIso(u)
+        closed = bool(np.linalg.norm(old.start - old.end) <= tol)
+        tm, dm = _project(iso, mid)
+        if dm > tol:
+            continue
+        forward = (
+            float(_tangent(iso, tm) @ _tangent(old.curve, mid_t))
+            * (1.0 if old.t1 > old.t0 else -1.0)
+            > 0
+        )
+        if closed:
+            a, b = (v0, v1) if forward else (v1, v0)
+        else:
+            a, da = _project(iso, old.start)
+            b, db = _project(iso, old.end)
+            if max(da, db) > tol:
+                continue
+            # a section vertex lies on a circle where faces meet, the end of the face's
+            # v-range: there exactly (the Boolean's vertex is off by up to its tolerance)
+            a, b = (_snap(iso, x, (v0, v1), tol) for x in (a, b))
+            period = iso.Period() if iso.IsPeriodic() else None
+            if (b <= a) if forward else (a <= b):
+                if period is None:
+                    continue
+                if forward:
+                    b += period
+                else:
+                    a += period
+        # the replacement must run along the old edge
+        ts = np.linspace(a, b, 9)
+        if any(_project(old.curve, _value(iso, t))[1] > tol for t in ts):
+            continue
+        return _Piece(iso, a, b, _value(iso, a), _value(iso, b), True)
+    return None
+
+
+def _snap(curve: Any, t: float, ends: tuple[float, float], tol: float) -> float:
+    here = _value(curve, t)
+    for e in ends:
+        if np.linalg.norm(_value(curve, e) - here) <= tol:
+            return e
+    return t
+
+
+def _pieces(wire: Any, face: TopoDS_Face) -> list[_Piece]:
+    out = []
+    ex = BRepTools_WireExplorer(TopoDS.Wire_s(wire), face)
+    while ex.More():
+        e = ex.Current()
+        c = BRep_Tool.Curve_s(e, 0.0, 0.0)
+        f, l = BRep_Tool.Range_s(e)
+        if e.Orientation() == TopAbs_REVERSED:
+            f, l = l, f
+        out.append(_Piece(c, f, l, _value(c, f), _value(c, l), False))
+        ex.Next()
+    return out
+
+
+def _vertex(p: FloatArray, tol: float) -> TopoDS_Vertex:
+    v = BRepBuilderAPI_MakeVertex(gp_Pnt(*p)).Vertex()
+    BRep_Builder().UpdateVertex(v, tol)
+    return v
+
+
+def _wire(pieces: list[_Piece], tol: float) -> Any:
+    n = len(pieces)
+    verts = []
+    for i in range(n):  # the vertex where piece i starts (and piece i - 1 ends)
+        prev, cur = pieces[i - 1], pieces[i]
+        p = cur.start if cur.exact or not prev.exact else prev.end
+        gap = max(float(np.linalg.norm(cur.start - p)), float(np.linalg.norm(prev.end - p)))
+        verts.append(_vertex(p, max(1.5 * gap, 1e-7)))
+    mk = BRepBuilderAPI_MakeWire()
+    for i, pc in enumerate(pieces):
+        vs, ve = verts[i], verts[(i + 1) % n]
+        if pc.t0 < pc.t1:
+            e: TopoDS_Edge = BRepBuilderAPI_MakeEdge(pc.curve, vs, ve, pc.t0, pc.t1).Edge()
+        else:
+            e = TopoDS.Edge_s(
+                BRepBuilderAPI_MakeEdge(pc.curve, ve, vs, pc.t1, pc.t0).Edge().Reversed()
+            )
+        mk.Add(e)
+        if not mk.IsDone():
+            raise _RebuildError("the rebuilt section wire does not connect")
+    return mk.Wire()
+
+
+def _area(face: TopoDS_Face) -> float:
+    props = GProp_GProps()
+    BRepGProp.SurfaceProperties_s(face, props, 1e-9)
+    return float(props.Mass())
+
+
+def exact_meridian(
+    section: TopoDS_Face, solid_faces: list[TopoDS_Face], frame: Frame, tol: float
+) -> TopoDS_Face:
+    """``section`` with every edge that lies on a surface of revolution replaced by that
+    surface's exact iso-curve. ``section`` itself when none does, or when the rebuilt face
+    fails OCC's check or differs in area (then the Boolean's curves are kept)."""
+    surfaces = _revolution_surfaces(solid_faces, frame, tol)
+    if not surfaces:
+        return section
+    try:
+        wires, replaced = [], 0
+        outer = BRepTools.OuterWire_s(section)
+        holes: list[Any] = []
+        ex = TopExp_Explorer(section, TopAbs_WIRE)
+        while ex.More():
+            if not ex.Current().IsSame(outer):
+                holes.append(ex.Current())
+            ex.Next()
+        for w in [outer, *holes]:
+            pieces = []
+            for pc in _pieces(w, section):
+                new = _iso_piece(surfaces, pc, frame, tol)
+                replaced += new is not None
+                pieces.append(new or pc)
+            wires.append(_wire(pieces, tol))
+        if not replaced:
+            return section
+        plane = BRep_Tool.Surface_s(section)
+        mk = BRepBuilderAPI_MakeFace(plane, wires[0])
+        for w in wires[1:]:
+            mk.Add(w)
+        if not mk.IsDone():
+            raise _RebuildError("the rebuilt section face failed")
+        face = TopoDS.Face_s(mk.Face().Oriented(section.Orientation()))
+        a0, a1 = _area(section), _area(face)
+        if not BRepCheck_Analyzer(face).IsValid() or abs(a1 - a0) > 1e-6 * abs(a0):
+            log.debug("exact meridian rejected: area %.9g vs %.9g", a1, a0)
+            return section
+    except Exception as err:  # an OCC failure here only costs the exact curves
+        if not (is_occ_exception(err) or isinstance(err, _RebuildError)):
+            raise
+        log.debug("exact meridian failed: %s", err)
+        return section
+    return face
