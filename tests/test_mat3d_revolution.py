@@ -59,7 +59,9 @@ from OCP.TopTools import TopTools_IndexedMapOfShape
 from scipy.spatial import cKDTree
 
 import medialcad.api as api
+from medialcad.api import medial_axis_2d
 from medialcad.errors import UnsupportedSolidError
+from medialcad.mat3d.segments import split_branches
 from medialcad.mat3d.solid import medial_axis_of
 from medialcad.recognition import Revolution, read_step, recognize
 from tests import faces as F
@@ -1135,22 +1137,41 @@ def test_bspline_blob_profile(angle: float) -> None:
     assert_oracles(num)
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="open bug: the planar mid sheet's boundary (the cap sheets' level curves) turns "
-    "back on itself next to the curvature-centre ends (row feet not monotone there): "
-    "BRepCheck finds its wire self-intersecting; every other oracle passes. It passed until "
-    "2026-12-01 with the denser 2D samples of the old fit check, by luck of the rows",
-)
-def test_near_circular_bspline_profile_small_angle() -> None:
-    """The simplest blob (5 equal radii: nearly a circle, 4 curvature centres and 2 branch
-    points close together) 1.05 from the axis, revolved by 5 degrees (far below the
-    mid-sheet threshold, about 55 degrees): the oracles pass (they failed by 3.3 tol while
-    feet near the closed B-spline's seam were clamped there)."""
-    solid = _revolved(F.bspline_blob([0.5] * 5), 0.05, math.radians(5.0), 0)
-    m, num = mat_and_numbers(solid, "near circle 5deg", max_samples=400, n_complete=60)
+@pytest.mark.parametrize(("n", "margin"), [(5, 0.05), (7, 0.5)], ids=["5-radii", "7-radii"])
+def test_near_circular_bspline_profile_small_angle(n: int, margin: float) -> None:
+    """The simplest blobs (equal radii: nearly a circle, ``n`` curvature centres with
+    branch points close together), revolved by 5 degrees (far below the mid-sheet
+    threshold, about 55 degrees): the oracles pass and the planar mid sheet is valid. Its
+    boundary (the cap sheets' level curves, ruled from the rows' feet) hooked back on
+    itself next to the curvature-centre ends while the rows there had feet projected
+    from centres on the branch spline, ill-conditioned next to a centre of curvature (5
+    rows in a row with one stale foot), and the end row had the nearest sample's feet
+    instead of the node's (BRepCheck: a self-intersecting wire). They failed by 3.3 tol
+    while feet near the closed B-spline's seam were clamped there."""
+    solid = _revolved(F.bspline_blob([0.5] * n), margin, math.radians(5.0), 0)
+    m, num = mat_and_numbers(solid, f"near circle {n} 5deg", max_samples=400, n_complete=60)
     assert any(s.role == "mid" for s in m.sheets)
     assert_oracles(num)
+
+
+@pytest.mark.parametrize("n", [5, 7])
+def test_segment_rows_are_exact_medial_points(n: int) -> None:
+    """Every row a segment carries into the 3D sheets is a medial point: its centre is
+    ``r`` from both feet (to 0.05 tol) and the feet advance along the rows without
+    stepping back, next to curvature-centre ends too (near-circular blobs, where a foot
+    projected from a centre within tol of the branch is off by ``delta / (1 - r k)``)."""
+    res = medial_axis_2d(F.bspline_blob([0.5] * n))
+    tol = res.tol
+    for s in split_branches(res.graph, res.boundary, None):
+        for foot in (s.foot_a, s.foot_b):
+            gap = np.abs(np.linalg.norm(s.centre - foot, axis=1) - s.radius)
+            assert gap.max() <= 0.05 * tol, (
+                f"segment of branch {s.branch}: {gap.max() / tol:.2f} tol"
+            )
+            step = np.diff(foot, axis=0)
+            moving = np.linalg.norm(step, axis=1) > 1e-3 * tol
+            turn = np.einsum("ij,ij->i", step[1:], step[:-1])[moving[1:] & moving[:-1]]
+            assert np.all(turn >= 0), f"segment of branch {s.branch}: a foot steps back"
 
 
 @HYPO

@@ -1408,6 +1408,16 @@ def _pad(where: int, S: MapSamples, smp: IntArray, ev: _Event, node_feet: tuple)
                 f = min(same, key=lambda f: float(np.linalg.norm(f.point_2d - pt)))
                 out_vals[k : k + 3] = [np.array([el]), np.array([f.param]), f.point_2d[None, :]]
         vals = tuple(out_vals)  # type: ignore[assignment]
+    elif len(smp) and ev.kind is NodeKind.CURVATURE_CENTRE and ev.feet:
+        # both sides' feet converge on the curvature maximum: the node's own foot (the
+        # nearest sample's feet are apart: a revolution's level curve, ruled from them to
+        # the node, hooked back at the end)
+        el, par, fp = ev.feet[0]
+        out_cc: list[NDArray[Any]] = list(vals)
+        for k in (0, 3):
+            if int(vals[k][0]) == el:
+                out_cc[k : k + 3] = [np.array([el]), np.array([par]), np.asarray(fp)[None, :]]
+        vals = tuple(out_cc)  # type: ignore[assignment]
     return vals
 
 

@@ -26,6 +26,7 @@ from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
 __all__ = ["End", "Segment", "split_branches"]
 
 FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
 LevelFn = Callable[[FloatArray, FloatArray], FloatArray]
 
 
@@ -549,30 +550,47 @@ def _refine(
 
     Feet (which become the rims on the solid's boundary) must be much closer than the
     tolerance (0.02 tol); centres follow the branch's spline within 0.1 tol; no step is
-    more than 3 times a neighbouring one.
+    more than 3 times a neighbouring one. A new sample is the branch spline's point, its
+    feet projected from it; next to a centre of curvature (``r k > 1/2`` at a foot) the
+    projection is ill-conditioned (every boundary point near the foot is nearly as near):
+    there the sample is solved from its foot instead (:func:`_from_foot`).
     """
     from scipy.interpolate import make_interp_spline
 
     cap = max(4 * len(w), 200)  # near a curvature-centre end the feet move like a square
     # root of the branch length: interpolation converges slowly there, stop refining
+    pieces = boundary.elements[el_a].piece is not None and boundary.elements[el_b].piece is not None
     for _ in range(16):
         if len(w) < 2 or len(w) >= cap:
             break
         k = min(3, len(w) - 1)
         wm = 0.5 * (w[1:] + w[:-1])
-        fit_c = make_interp_spline(w, np.column_stack([centre, radius]), k=k)(wm)
-        fit_a = make_interp_spline(w, foot_a, k=k)(wm)
-        fit_b = make_interp_spline(w, foot_b, k=k)(wm)
         ex = sp(u0 + wm * span)  # type: ignore[operator]
         ex_a = _project_many(boundary, el_a, ex[:, :2], 0.5 * (foot_a[1:] + foot_a[:-1]))
         ex_b = _project_many(boundary, el_b, ex[:, :2], 0.5 * (foot_b[1:] + foot_b[:-1]))
+        if pieces:
+            ill = np.nonzero(
+                (ex[:, 2] * _curvature_at(boundary, el_a, ex_a) > 0.5)
+                | (ex[:, 2] * _curvature_at(boundary, el_b, ex_b) > 0.5)
+            )[0]
+            if len(ill):
+                got = _from_foot(boundary, el_a, el_b, foot_a, foot_b, ill)
+                for j, (c, r, fa, fb) in zip(ill.tolist(), got, strict=True):
+                    # its chord position between the two rows it splits
+                    d0 = float(np.linalg.norm(c - centre[j]))
+                    d1 = float(np.linalg.norm(centre[j + 1] - c))
+                    f = d0 / (d0 + d1) if d0 + d1 > 0 else 0.5
+                    wm[j] = w[j] + min(max(f, 0.05), 0.95) * (w[j + 1] - w[j])
+                    ex[j, :2], ex[j, 2], ex_a[j], ex_b[j] = c, r, fa, fb
+        fit_c = make_interp_spline(w, np.column_stack([centre, radius]), k=k)(wm)
+        fit_a = make_interp_spline(w, foot_a, k=k)(wm)
+        fit_b = make_interp_spline(w, foot_b, k=k)(wm)
         bad = np.linalg.norm(fit_c - ex, axis=1) > 0.1 * tol
         bad |= np.linalg.norm(fit_a - ex_a, axis=1) > 0.02 * tol
         bad |= np.linalg.norm(fit_b - ex_b, axis=1) > 0.02 * tol
         # and graded rows: a step more than 3 times its neighbour's is split too (the rows
         # are also interpolated into curves no check sees here, such as a revolution's
-        # level curve on the mid sheet; added against a near-circular blob's level curve
-        # that turned back on itself, which it did not cure: see that test's xfail)
+        # level curve on the mid sheet)
         dw = np.diff(w)
         beside = np.minimum(np.r_[np.inf, dw[:-1]], np.r_[dw[1:], np.inf])
         bad |= dw > 3.0 * beside
@@ -586,6 +604,79 @@ def _refine(
         foot_a = np.insert(foot_a, idx + 1, ex_a[idx], axis=0)
         foot_b = np.insert(foot_b, idx + 1, ex_b[idx], axis=0)
     return w, centre, radius, foot_a, foot_b
+
+
+def _curvature_at(boundary: Boundary, element: int, pts: FloatArray) -> FloatArray:
+    """Signed curvature (positive: bending into the face) of an element at its points."""
+    e = boundary.elements[element]
+    return np.asarray(boundary.frame_at(e, _params_many(boundary, element, pts))[2])
+
+
+def _params_many(boundary: Boundary, element: int, pts: FloatArray) -> FloatArray:
+    """Curve parameters of points lying on an edge element (grid, then Newton)."""
+    e = boundary.elements[element]
+    assert e.piece is not None
+    lo, hi = sorted((e.piece.t0, e.piece.t1))
+    keep = _keeper(e, lo, hi)
+    grid = np.linspace(lo, hi, 129)
+    pg = e.piece.curve.point(grid)
+    t = grid[np.argmin(np.linalg.norm(pts[:, None, :] - pg[None, :, :], axis=2), axis=1)]
+    for _ in range(8):
+        p, d1, _ = e.piece.curve.derivs(t)
+        g = np.einsum("ij,ij->i", p - pts, d1)
+        h = np.einsum("ij,ij->i", d1, d1)
+        t = keep(t - g / np.maximum(h, 1e-300))
+    return np.asarray(t)
+
+
+def _from_foot(
+    boundary: Boundary,
+    el_a: int,
+    el_b: int,
+    foot_a: FloatArray,
+    foot_b: FloatArray,
+    rows: IntArray,
+) -> list[tuple[FloatArray, float, FloatArray, FloatArray]]:
+    """Exact medial points between rows ``j`` and ``j + 1`` (``j`` in ``rows``), solved from
+    side a's foot midway between theirs: the radius is the least ``f(q) = |q - b|^2 /
+    (2 (q - b).n)`` (the disk tangent at ``b`` through ``q``) over ``q`` on side b's
+    element between its two feet (a bounded Brent search). The radius, hence the centre
+    ``b + r n``, is exact to rounding where a centre from the branch spline projects to
+    feet that are off by ``delta / (1 - r k)``."""
+    from scipy.optimize import minimize_scalar
+
+    ea, eb = boundary.elements[el_a], boundary.elements[el_b]
+    assert ea.piece is not None and eb.piece is not None
+    ta = _params_many(boundary, el_a, np.vstack([foot_a[rows], foot_a[rows + 1]]))
+    tb = _params_many(boundary, el_b, np.vstack([foot_b[rows], foot_b[rows + 1]]))
+    m = len(rows)
+    ta0, ta1, tb0, tb1 = ta[:m], ta[m:], tb[:m], tb[m:]
+    period = getattr(ea.piece.curve, "period", None)
+    if period is not None:  # across the seam of a closed curve: the short way round
+        ta1 = ta0 + (ta1 - ta0 + 0.5 * period) % period - 0.5 * period
+    b, n, _ = boundary.frame_at(ea, 0.5 * (ta0 + ta1))
+    lo_b, hi_b = sorted((eb.piece.t0, eb.piece.t1))
+    period_b = getattr(eb.piece.curve, "period", None)
+    out = []
+    for i in range(m):
+        x0, x1 = sorted((float(tb0[i]), float(tb1[i])))
+        if period_b is not None and x1 - x0 > 0.5 * period_b:
+            x0, x1 = x1, x0 + period_b
+        pad = 0.5 * (x1 - x0) + 1e-12 * max(1.0, abs(x0))
+        lo, hi = x0 - pad, x1 + pad
+        if period_b is None:
+            lo, hi = max(lo, lo_b), min(hi, hi_b)
+
+        def f(t: float, i: int = i) -> float:
+            q = eb.piece.curve.point(np.array([t]))[0] - b[i]  # type: ignore[union-attr]
+            bb = float(q @ n[i])
+            return float(q @ q) / (2.0 * bb) if bb > 0 else np.inf
+
+        res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": 1e-14})
+        r = float(res.fun)
+        q = eb.piece.curve.point(np.array([float(res.x)]))[0]
+        out.append((b[i] + r * n[i], r, b[i].copy(), np.asarray(q, dtype=float)))
+    return out
 
 
 def _side_before(cuts: list[float], um: float, ulo: float, uhi: float, e0: int, e1: int) -> bool:
