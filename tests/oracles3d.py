@@ -636,6 +636,18 @@ class SolidBoundary:
                 out.append(w)
         return out
 
+    def _closed(self, face: int, axis: int, other: float) -> bool:
+        """Whether the face's two ends of parameter ``axis`` meet (at the other parameter
+        ``other``)."""
+        s = self._surf[face]
+        if axis == 0:
+            lo, hi = s.FirstUParameter(), s.LastUParameter()
+            a, b = s.Value(lo, other), s.Value(hi, other)
+        else:
+            lo, hi = s.FirstVParameter(), s.LastVParameter()
+            a, b = s.Value(other, lo), s.Value(other, hi)
+        return bool(np.isfinite(hi - lo) and a.Distance(b) <= 1e-9 * self.diag)
+
     def _curvature_bound(self, face: int, uv: tuple[float, float]) -> float:
         props = BRepLProp_SLProps(self._surf[face], uv[0], uv[1], 2, 1e-12)
         if not props.IsCurvatureDefined():
@@ -669,9 +681,18 @@ class SolidBoundary:
         lo_u, hi_u = srf.FirstUParameter(), srf.LastUParameter()
         lo_v, hi_v = srf.FirstVParameter(), srf.LastVParameter()
 
+        # a face closed in a parameter (the seam of a periodic profile): the search wraps
+        # across its seam instead of stopping there (next to a curvature-centre end at a
+        # C1 seam the well-conditioned feet are on the other side)
+        wrap_u = self._closed(face, 0, v0)
+        wrap_v = self._closed(face, 1, u0)
+
+        def fold(x: float, lo: float, hi: float, wrap: bool) -> float:
+            return lo + (x - lo) % (hi - lo) if wrap else min(max(x, lo), hi)
+
         def f(x: FloatArray) -> float:
-            uu = min(max(u0 + x[0], lo_u), hi_u)
-            vv = min(max(v0 + x[1], lo_v), hi_v)
+            uu = fold(u0 + x[0], lo_u, hi_u, wrap_u)
+            vv = fold(v0 + x[1], lo_v, hi_v, wrap_v)
             m = self.medial_point(face, (uu, vv))
             return math.inf if m is None else float(np.linalg.norm(p - m))
 
@@ -906,7 +927,7 @@ def soundness(
     points: ArrayLike,
     rim_tol: float | None = None,
     refine_above: float | None = None,
-    max_refine: int = 12,
+    max_refine: int = 40,
 ) -> FloatArray:
     """Soundness errors of output samples: how far each sample is from being medial.
 
@@ -929,7 +950,9 @@ def soundness(
     ``refine_above``, the samples whose ray error exceeds it are re-measured as their
     distance to the true medial points whose feet lie near ``q`` on its face
     (:meth:`SolidBoundary.local_medial_distance`), and the smaller value is returned; if
-    more than ``max_refine`` samples exceed it, none is (each search costs ~100 ray depths).
+    more than ``max_refine`` samples exceed it, none is (each search costs ~100 ray depths;
+    the 20 skeletal circles of a full revolution of a blob, at its curvature-centre ends,
+    read 1.25 tol each along the ray and 0.00 refined: 23 samples).
     """
     sb = _boundary(boundary)
     tol = 1e-6 * sb.diag if rim_tol is None else rim_tol

@@ -329,7 +329,9 @@ class _Tracer:
         # start only a little after it. While the maximum sits at an end of the bracket
         # that is not the end of the curve, search again beyond that end, twice as wide
         width = b - a
-        for _ in range(12):
+        # (not on a curve of constant curvature, an arc: there every point is a maximum)
+        constant = e.piece is not None and e.piece.curve.constant_curvature is not None
+        for _ in range(0 if constant else 12):
             x, k = best[5], best[2]
             stop = 4e-3 * self.cfg.eps_s
             if x - a < stop and a > lo:
@@ -340,7 +342,7 @@ class _Tracer:
                 break
             width *= 2.0
             again = self._golden_max(loop, a, b)
-            if again[2] < k:
+            if again[2] <= k * (1.0 + 1e-12):  # no higher beyond the end: it stands
                 break
             best = again
         p, n, k, ei, t, _ = best
