@@ -1154,13 +1154,15 @@ def test_near_circular_bspline_profile_small_angle(n: int, margin: float) -> Non
     assert_oracles(num)
 
 
-@pytest.mark.parametrize("n", [5, 7])
+@pytest.mark.parametrize("n", [5, 7, 0], ids=["blob-5", "blob-7", "ellipse"])
 def test_segment_rows_are_exact_medial_points(n: int) -> None:
     """Every row a segment carries into the 3D sheets is a medial point: its centre is
     ``r`` from both feet (to 0.05 tol) and the feet advance along the rows without
     stepping back, next to curvature-centre ends too (near-circular blobs, where a foot
-    projected from a centre within tol of the branch is off by ``delta / (1 - r k)``)."""
-    res = medial_axis_2d(F.bspline_blob([0.5] * n))
+    projected from a centre within tol of the branch is off by ``delta / (1 - r k)``), and
+    on a full ellipse (one closed edge: a row solved from its foot across the seam once
+    averaged parameters 0 and 2 pi into a foot on the far side)."""
+    res = medial_axis_2d(F.bspline_blob([0.5] * n) if n else F.ellipse(3.0, 2.0))
     tol = res.tol
     for s in split_branches(res.graph, res.boundary, None):
         for foot in (s.foot_a, s.foot_b):

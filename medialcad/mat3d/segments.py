@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 from scipy.optimize import brentq
 
 from medialcad.mat2d.boundary import Boundary, Element
+from medialcad.mat2d.curves import CircleCurve, EllipseCurve
 from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
 
 __all__ = ["End", "Segment", "split_branches"]
@@ -579,6 +580,9 @@ def _refine(
                     # its chord position between the two rows it splits
                     d0 = float(np.linalg.norm(c - centre[j]))
                     d1 = float(np.linalg.norm(centre[j + 1] - c))
+                    step = float(np.linalg.norm(centre[j + 1] - centre[j]))
+                    if not np.isfinite(r) or max(d0, d1) > 2.0 * step + tol:
+                        continue  # not between its rows: keep the projected sample
                     f = d0 / (d0 + d1) if d0 + d1 > 0 else 0.5
                     wm[j] = w[j] + min(max(f, 0.05), 0.95) * (w[j + 1] - w[j])
                     ex[j, :2], ex[j, 2], ex_a[j], ex_b[j] = c, r, fa, fb
@@ -629,6 +633,17 @@ def _params_many(boundary: Boundary, element: int, pts: FloatArray) -> FloatArra
     return np.asarray(t)
 
 
+def _closed_period(e: Element) -> float | None:
+    """The parameter period of an element that is a whole closed curve (a periodic
+    B-spline, a full ellipse or circle), else None."""
+    assert e.piece is not None
+    span = abs(e.piece.t1 - e.piece.t0)
+    period = getattr(e.piece.curve, "period", None)
+    if period is None and isinstance(e.piece.curve, (CircleCurve, EllipseCurve)):
+        period = 2.0 * np.pi
+    return float(period) if period is not None and span >= period * (1.0 - 1e-12) else None
+
+
 def _from_foot(
     boundary: Boundary,
     el_a: int,
@@ -651,12 +666,12 @@ def _from_foot(
     tb = _params_many(boundary, el_b, np.vstack([foot_b[rows], foot_b[rows + 1]]))
     m = len(rows)
     ta0, ta1, tb0, tb1 = ta[:m], ta[m:], tb[:m], tb[m:]
-    period = getattr(ea.piece.curve, "period", None)
+    period = _closed_period(ea)
     if period is not None:  # across the seam of a closed curve: the short way round
         ta1 = ta0 + (ta1 - ta0 + 0.5 * period) % period - 0.5 * period
     b, n, _ = boundary.frame_at(ea, 0.5 * (ta0 + ta1))
     lo_b, hi_b = sorted((eb.piece.t0, eb.piece.t1))
-    period_b = getattr(eb.piece.curve, "period", None)
+    period_b = _closed_period(eb)
     out = []
     for i in range(m):
         x0, x1 = sorted((float(tb0[i]), float(tb1[i])))
