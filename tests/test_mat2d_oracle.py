@@ -8,6 +8,7 @@ import os
 from pathlib import Path
 from typing import Any
 
+import cadquery as cq
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, Phase, given, settings
@@ -180,3 +181,23 @@ def test_curvature_jump_at_a_periodic_seam_ends_at_the_high_side_centre() -> Non
     assert np.linalg.norm(best.point - centre) <= res.tol
     assert abs(best.radius - 1.0 / k[0]) <= res.tol
     check_with_oracles(face, "C1 seam blob", n_boundary=80, per_branch=12)
+
+
+@pytest.mark.parametrize("b", [1.0, 0.4])
+def test_ellipse_of_two_halves_ends_at_the_curvature_centres(b: float) -> None:
+    """An ellipse written as two half-ellipse edges joined at its vertices (common in STEP):
+    the curvature maxima sit on the joints, so the samples' bracket of each maximum
+    straddles two elements. The ends are the closed-form centres ``(+-(a^2 - b^2)/a, 0)``
+    (a clamp of that bracket to one element once put them 0.56-0.70 tol off)."""
+    a = 3.0
+    halves = [cq.Edge.makeEllipse(a, b, angle1=t, angle2=t + 180) for t in (0, 180)]
+    face = cq.Face.makeFromWires(cq.Wire.assembleEdges(halves)).wrapped
+    res = compute(face)
+    c = (a * a - b * b) / a
+    ends = [n.point for n in res.nodes if n.kind == "curvature_centre"]
+    assert len(ends) == 2
+    for p in ends:  # the face lies in the model's xy-plane
+        assert (
+            min(np.linalg.norm(p - np.array([s * c, 0.0, 0.0])) for s in (1, -1)) <= 0.05 * res.tol
+        )
+    check_with_oracles(face, f"ellipse halves b={b}")

@@ -313,11 +313,13 @@ class _Tracer:
         # staying on the curve that holds it
         pad = 0.5 * (b - a) + 1e-3 * self.cfg.spacing
         e = self.b.element_at(loop, float((0.5 * (a + b)) % length))
-        lo, hi = -np.inf, np.inf
         if e.piece is not None and e.length < length:
             oa = (a - e.s0) % length
-            lo, hi = a - oa, a - oa + e.length
-            a, b = max(a - pad, lo), min(b + pad, hi)
+            ob = oa + (b - a)
+            lo, hi = a, b  # a bracket over a joint between elements: searched as it is
+            if ob <= e.length:  # within one element: padded and extended on it only
+                lo, hi = a - oa, a - oa + e.length
+                a, b = max(a - pad, lo), min(b + pad, hi)
         else:
             a, b = a - pad, b + pad
             lo, hi = 0.5 * (a + b) - 0.5 * length, 0.5 * (a + b) + 0.5 * length
