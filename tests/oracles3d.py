@@ -621,7 +621,6 @@ class SolidBoundary:
         s = self._surf[face]
         u, v = float(uv[0]), float(uv[1])
         out = [(u, v)]
-        here = _xyz(s.Value(u, v))
         ranges = (
             (s.FirstUParameter(), s.LastUParameter()),
             (s.FirstVParameter(), s.LastVParameter()),
@@ -629,11 +628,8 @@ class SolidBoundary:
         for axis, (lo, hi) in enumerate(ranges):
             x, slack = out[0][axis], 1e-9 * (hi - lo)
             alt = hi if abs(x - lo) <= slack else lo if abs(x - hi) <= slack else None
-            if alt is None:
-                continue
-            w = (alt, v) if axis == 0 else (u, alt)
-            if np.linalg.norm(_xyz(s.Value(*w)) - here) <= 1e-9 * self.diag:
-                out.append(w)
+            if alt is not None and self._closed(face, axis, v if axis == 0 else u):
+                out.append((alt, v) if axis == 0 else (u, alt))
         return out
 
     def _closed(self, face: int, axis: int, other: float) -> bool:

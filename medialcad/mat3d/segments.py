@@ -212,6 +212,17 @@ def _project_many(
     cs = np.asarray(cs, dtype=float)
     if e.piece is None:
         return np.broadcast_to(np.asarray(e.vertex, dtype=float), cs.shape).copy()
+    return np.asarray(e.piece.curve.point(_project_params(boundary, element, cs, near)))
+
+
+def _project_params(
+    boundary: Boundary, element: int, cs: FloatArray, near: FloatArray | None = None
+) -> FloatArray:
+    """The curve parameters of :func:`_project_many`'s points (an edge element); of points
+    lying on the element, their own parameters."""
+    e = boundary.elements[element]
+    assert e.piece is not None
+    cs = np.asarray(cs, dtype=float)
     lo, hi = sorted((e.piece.t0, e.piece.t1))
     keep = _keeper(e, lo, hi)
     grid = np.linspace(lo, hi, 65)
@@ -231,7 +242,7 @@ def _project_many(
         t = keep(t - step)
         if np.all(np.abs(step) < 1e-15 * np.maximum(1.0, np.abs(t))):
             break
-    return np.asarray(e.piece.curve.point(t))
+    return np.asarray(t)
 
 
 def _loop_points(boundary: Boundary, loop: int, s0: float, s1: float, step: float) -> FloatArray:
@@ -567,13 +578,13 @@ def _refine(
         k = min(3, len(w) - 1)
         wm = 0.5 * (w[1:] + w[:-1])
         ex = sp(u0 + wm * span)  # type: ignore[operator]
-        ex_a = _project_many(boundary, el_a, ex[:, :2], 0.5 * (foot_a[1:] + foot_a[:-1]))
-        ex_b = _project_many(boundary, el_b, ex[:, :2], 0.5 * (foot_b[1:] + foot_b[:-1]))
+        near_a, near_b = 0.5 * (foot_a[1:] + foot_a[:-1]), 0.5 * (foot_b[1:] + foot_b[:-1])
         if pieces:
-            ill = np.nonzero(
-                (ex[:, 2] * _curvature_at(boundary, el_a, ex_a) > 0.5)
-                | (ex[:, 2] * _curvature_at(boundary, el_b, ex_b) > 0.5)
-            )[0]
+            ea, eb = boundary.elements[el_a], boundary.elements[el_b]
+            ta = _project_params(boundary, el_a, ex[:, :2], near_a)
+            tb = _project_params(boundary, el_b, ex[:, :2], near_b)
+            (ex_a, _, ka), (ex_b, _, kb) = boundary.frame_at(ea, ta), boundary.frame_at(eb, tb)
+            ill = np.nonzero((ex[:, 2] * ka > 0.5) | (ex[:, 2] * kb > 0.5))[0]
             if len(ill):
                 got = _from_foot(boundary, el_a, el_b, foot_a, foot_b, ill)
                 for j, (c, r, fa, fb) in zip(ill.tolist(), got, strict=True):
@@ -586,6 +597,9 @@ def _refine(
                     f = d0 / (d0 + d1) if d0 + d1 > 0 else 0.5
                     wm[j] = w[j] + min(max(f, 0.05), 0.95) * (w[j + 1] - w[j])
                     ex[j, :2], ex[j, 2], ex_a[j], ex_b[j] = c, r, fa, fb
+        else:
+            ex_a = _project_many(boundary, el_a, ex[:, :2], near_a)
+            ex_b = _project_many(boundary, el_b, ex[:, :2], near_b)
         fit_c = make_interp_spline(w, np.column_stack([centre, radius]), k=k)(wm)
         fit_a = make_interp_spline(w, foot_a, k=k)(wm)
         fit_b = make_interp_spline(w, foot_b, k=k)(wm)
@@ -608,29 +622,6 @@ def _refine(
         foot_a = np.insert(foot_a, idx + 1, ex_a[idx], axis=0)
         foot_b = np.insert(foot_b, idx + 1, ex_b[idx], axis=0)
     return w, centre, radius, foot_a, foot_b
-
-
-def _curvature_at(boundary: Boundary, element: int, pts: FloatArray) -> FloatArray:
-    """Signed curvature (positive: bending into the face) of an element at its points."""
-    e = boundary.elements[element]
-    return np.asarray(boundary.frame_at(e, _params_many(boundary, element, pts))[2])
-
-
-def _params_many(boundary: Boundary, element: int, pts: FloatArray) -> FloatArray:
-    """Curve parameters of points lying on an edge element (grid, then Newton)."""
-    e = boundary.elements[element]
-    assert e.piece is not None
-    lo, hi = sorted((e.piece.t0, e.piece.t1))
-    keep = _keeper(e, lo, hi)
-    grid = np.linspace(lo, hi, 129)
-    pg = e.piece.curve.point(grid)
-    t = grid[np.argmin(np.linalg.norm(pts[:, None, :] - pg[None, :, :], axis=2), axis=1)]
-    for _ in range(8):
-        p, d1, _ = e.piece.curve.derivs(t)
-        g = np.einsum("ij,ij->i", p - pts, d1)
-        h = np.einsum("ij,ij->i", d1, d1)
-        t = keep(t - g / np.maximum(h, 1e-300))
-    return np.asarray(t)
 
 
 def _closed_period(e: Element) -> float | None:
@@ -662,8 +653,8 @@ def _from_foot(
 
     ea, eb = boundary.elements[el_a], boundary.elements[el_b]
     assert ea.piece is not None and eb.piece is not None
-    ta = _params_many(boundary, el_a, np.vstack([foot_a[rows], foot_a[rows + 1]]))
-    tb = _params_many(boundary, el_b, np.vstack([foot_b[rows], foot_b[rows + 1]]))
+    ta = _project_params(boundary, el_a, np.vstack([foot_a[rows], foot_a[rows + 1]]))
+    tb = _project_params(boundary, el_b, np.vstack([foot_b[rows], foot_b[rows + 1]]))
     m = len(rows)
     ta0, ta1, tb0, tb1 = ta[:m], ta[m:], tb[:m], tb[m:]
     period = _closed_period(ea)

@@ -135,6 +135,7 @@ def _iso_piece(
     """The exact iso-curve piece replacing ``old``, if ``old`` lies on one of ``surfaces``."""
     mid_t = 0.5 * (old.t0 + old.t1)
     mid = _value(old.curve, mid_t)
+    closed = bool(np.linalg.norm(old.start - old.end) <= tol)
     for s, (_u0, _u1, v0, v1) in surfaces:
         sas = ShapeAnalysis_Surface(s)
         uv = sas.ValueOfUV(gp_Pnt(*mid), tol)
@@ -142,14 +143,12 @@ def _iso_piece(
             continue
         u = uv.X()
         # the half-plane's angle exactly: turn the iso-curve into the section plane
+        # (the frame: x radial, y along the axis, z normal to the section plane)
+        sign = 1.0 if float(_xyz(s.Axis().Direction()) @ frame.ydir) > 0 else -1.0
         for _ in range(2):
             q = _value(s.UIso(u), uv.Y()) - frame.origin
-            # the frame: x radial, y along the axis, z normal to the section plane
-            off = math.atan2(-float(q @ frame.zdir), float(q @ frame.xdir))
-            sign = 1.0 if float(_xyz(s.Axis().Direction()) @ frame.ydir) > 0 else -1.0
-            u -= sign * off
+            u -= sign * math.atan2(-float(q @ frame.zdir), float(q @ frame.xdir))
         iso = s.UIso(u)
-        closed = bool(np.linalg.norm(old.start - old.end) <= tol)
         tm, dm = _project(iso, mid)
         if dm > tol:
             continue
