@@ -42,9 +42,9 @@ from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeRevol
 from OCP.GeomAbs import GeomAbs_BSplineCurve, GeomAbs_Plane
-from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
+from OCP.gp import gp_Ax1, gp_Ax2, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
 from OCP.GProp import GProp_GProps
-from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
 from medialcad.errors import (
     InputError,
@@ -52,6 +52,8 @@ from medialcad.errors import (
     NotExtrusionOrRevolutionError,
 )
 from medialcad.occ import read_shapes
+from medialcad.occ.meridian import exact_meridian
+from medialcad.occ.recognize import _full_section
 from medialcad.occ.shapes import compound, edges, faces
 from medialcad.recognition import Extrusion, Revolution, read_step, recognize
 from tests import faces as F
@@ -554,16 +556,24 @@ def _spline_profiles() -> dict[str, TopoDS_Face]:
     }
 
 
+@pytest.mark.parametrize("mirrored", [False, True], ids=["placed", "mirrored"])
 @pytest.mark.parametrize("name", ["blob", "d_shape", "square_with_blob_hole"])
-def test_full_revolution_of_a_spline_profile_has_the_exact_meridian(name: str) -> None:
+def test_full_revolution_of_a_spline_profile_has_the_exact_meridian(
+    name: str, mirrored: bool
+) -> None:
     """A full revolution is read by cutting it with a half-plane; OCC's Boolean approximates
     the cut of a B-spline surface of revolution (128 poles, 2.5e-7 off the solid, closing
     with a tangent kink the 2D MAT takes for a corner). The profile is rebuilt from the
-    surfaces' iso-curves: turned back, its edges lie on the original profile to 1e-11 diag, the splines keep their
-    own pole counts, and the area is the original profile's to 1e-12."""
+    surfaces' iso-curves: turned back, its edges lie on the original profile to 1e-11
+    diag, the splines keep their own pole counts, and the area is the original profile's
+    to 1e-12. So also for a mirrored part (a left-handed placement)."""
     profile = _spline_profiles()[name]
     revol = BRepPrimAPI_MakeRevol(profile, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), 2 * math.pi)
     trsf = _random_trsf(7)
+    if mirrored:
+        mirror = gp_Trsf()
+        mirror.SetMirror(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0.3, 0.2, 1.0)))
+        trsf = trsf.Multiplied(mirror)
     solid = BRepBuilderAPI_Transform(revol.Shape(), trsf, True).Shape()
     r = recognize(solid)
     assert isinstance(r, Revolution) and r.full
@@ -577,6 +587,24 @@ def test_full_revolution_of_a_spline_profile_has_the_exact_meridian(name: str) -
     worst = max(_off_profile(e, r, profile, trsf) for e in edges(r.profile))
     assert worst <= 1e-11 * r.diag
     assert _area(r.profile) == pytest.approx(_area(profile), rel=1e-12)
+
+
+def test_exact_meridian_keeps_a_reversed_section_exact() -> None:
+    """The section face may come REVERSED: its wires are read as the plane sees them, so
+    the outer loop and the hole are rebuilt from iso-curves all the same (they fell back
+    to the Boolean's 128-pole approximation), and the face keeps its orientation."""
+    profile = _spline_profiles()["square_with_blob_hole"]
+    revol = BRepPrimAPI_MakeRevol(profile, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0)), 2 * math.pi)
+    solid = revol.Shape()
+    frame, section = _full_section(solid, np.zeros(3), np.array([0.0, 1.0, 0.0]), 10.0)
+    for sec in (section, TopoDS.Face_s(section.Reversed())):
+        out = exact_meridian(sec, list(faces(solid)), frame, 1e-6)
+        assert out.Orientation() == sec.Orientation()
+        poles = [
+            _basis(BRep_Tool.Curve_s(e, 0.0, 0.0)).NbPoles() for e in edges(out) if _is_spline(e)
+        ]
+        assert poles == [6]
+        assert _area(out) == pytest.approx(_area(profile), rel=1e-12)
 
 
 def _is_spline(e: Any) -> bool:

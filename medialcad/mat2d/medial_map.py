@@ -774,6 +774,21 @@ def _near_elements(
     r, j = np.concatenate(rows), np.concatenate(els)
     ok = np.linalg.norm(centre[r] - C.bound_c[j], axis=1) <= radius[r] + C.bound_h[j]
     r, j = r[ok], j[ok]
+    # a line segment exactly: its points with f <= R are those in the disk. Next to the
+    # tangency point (and the contact) a fine polygon hugs the disk from outside, its
+    # bounding circles meet it all along (~sqrt(edges) pairs a sample, not a handful)
+    line = np.nonzero(C.kind[j] == LINE)[0]
+    if len(line):
+        k = C.pos[j[line]]
+        c = centre[r[line]]
+        o, d = C.line_o[k], C.line_d[k]
+        t = np.clip(_dot(c - o, d) / _dot(d, d), C.line_lo[k], C.line_hi[k])
+        gap = np.linalg.norm(c - (o + t[:, None] * d), axis=1)
+        rl = radius[r[line]]
+        far = gap > rl * (1 + 1e-9) + 1e-12 * C.diag
+        keep = np.ones(len(r), dtype=bool)
+        keep[line[far]] = False
+        r, j = r[keep], j[keep]
     order = np.lexsort((j, r))
     return r[order], j[order]
 
@@ -785,13 +800,20 @@ def _shrinking_ball(C: Candidates, b: FloatArray, n: FloatArray, r: FloatArray) 
     pts = C.cloud.data
     tiny = 1e-12 * C.diag
     active = np.arange(len(b))
+    k = min(4, C.cloud.n)
     for _ in range(100):
         if len(active) == 0:
             break
         c = b[active] + r[active, None] * n[active]
-        dist, j = C.cloud.query(c)
-        fq = _f_values(pts[j], b[active], n[active], tiny)
-        shrink = (dist < r[active] * (1 - 1e-9)) & (fq < r[active])
+        # the nearest few cloud points: the least f among those inside the disk shrinks
+        # it furthest (fewer rounds than the nearest one alone)
+        dist, j = C.cloud.query(c, k=k)
+        dist, j = dist.reshape(len(c), k), j.reshape(len(c), k)
+        ra = r[active]
+        fk = _f_values(pts[j], b[active, None, :], n[active, None, :], tiny)
+        fk = np.where((dist < ra[:, None] * (1 - 1e-9)) & np.isfinite(dist), fk, np.inf)
+        fq = fk.min(axis=1)
+        shrink = fq < ra
         r[active[shrink]] = fq[shrink]
         active = active[shrink]
     return r
@@ -822,7 +844,7 @@ def _global_min(
     start = np.minimum(np.minimum(R.self_bound, local), 0.5 * diag) * (1 + 1e-3)
     if hint is not None:
         start = np.minimum(start, np.where(hint > 0, hint, np.inf))
-    reach = _shrinking_ball(C, R.b, R.n, start) * (1 + 1e-3) + 1e-8 * diag
+    reach = _shrinking_ball(C, R.b, R.n, start) * (1 + 1e-6) + 1e-9 * diag
     active = np.arange(m)
     while len(active):
         sub = R.take(active)

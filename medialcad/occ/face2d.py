@@ -20,6 +20,7 @@ from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepCheck import BRepCheck_Analyzer, BRepCheck_ListOfStatus
 from OCP.BRepTools import BRepTools_WireExplorer
+from OCP.Geom import Geom_Line
 from OCP.Geom2d import (
     Geom2d_BSplineCurve,
     Geom2d_Circle,
@@ -312,8 +313,11 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
                     c3 = BRep_Tool.Curve_s(edge, 0.0, 0.0)
                     if c3 is None:
                         raise UnsupportedGeometryError("an edge has no 3D curve")
+                    # (a line is in the plane when its two ends are)
+                    n_probe = 2 if isinstance(c3, Geom_Line) else 9
                     probe = np.array(
-                        [_vec(c3.Value(t)) for t in np.linspace(first, last, 9)], dtype=float
+                        [_vec(c3.Value(t)) for t in np.linspace(first, last, n_probe)],
+                        dtype=float,
                     )
                     off = float(np.abs(frame.height(probe)).max())
                     if off > max(10 * flat_tol, 2 * BRep_Tool.Tolerance_s(edge)):

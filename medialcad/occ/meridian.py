@@ -41,7 +41,7 @@ from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.GProp import GProp_GProps
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
-from OCP.TopAbs import TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex
 
@@ -144,10 +144,16 @@ def _iso_piece(
         u = uv.X()
         # the half-plane's angle exactly: turn the iso-curve into the section plane
         # (the frame: x radial, y along the axis, z normal to the section plane)
-        sign = 1.0 if float(_xyz(s.Axis().Direction()) @ frame.ydir) > 0 else -1.0
+        # (the sense of u about the frame's axis read off the surface itself: a mirrored
+        # placement turns the other way)
+        def angle(uu: float) -> float:
+            q = _value(s.UIso(uu), uv.Y()) - frame.origin
+            return math.atan2(float(q @ frame.zdir), float(q @ frame.xdir))
+
+        a0 = angle(u)
+        sign = 1.0 if math.remainder(angle(u + 1e-3) - a0, 2 * math.pi) > 0 else -1.0
         for _ in range(2):
-            q = _value(s.UIso(u), uv.Y()) - frame.origin
-            u -= sign * math.atan2(-float(q @ frame.zdir), float(q @ frame.xdir))
+            u -= sign * angle(u)
         iso = s.UIso(u)
         tm, dm = _project(iso, mid)
         if dm > tol:
@@ -246,28 +252,30 @@ def exact_meridian(
     """``section`` with every edge that lies on a surface of revolution replaced by that
     surface's exact iso-curve. ``section`` itself when none does, or when the rebuilt face
     fails OCC's check or differs in area (then the Boolean's curves are kept)."""
-    surfaces = _revolution_surfaces(solid_faces, frame, tol)
-    if not surfaces:
-        return section
     try:
+        surfaces = _revolution_surfaces(solid_faces, frame, tol)
+        if not surfaces:
+            return section
+        # the wires as the plane sees them (a REVERSED face runs them the other way)
+        fwd = TopoDS.Face_s(section.Oriented(TopAbs_FORWARD))
         wires, replaced = [], 0
-        outer = BRepTools.OuterWire_s(section)
+        outer = BRepTools.OuterWire_s(fwd)
         holes: list[Any] = []
-        ex = TopExp_Explorer(section, TopAbs_WIRE)
+        ex = TopExp_Explorer(fwd, TopAbs_WIRE)
         while ex.More():
             if not ex.Current().IsSame(outer):
                 holes.append(ex.Current())
             ex.Next()
         for w in [outer, *holes]:
             pieces = []
-            for pc in _pieces(w, section):
+            for pc in _pieces(w, fwd):
                 new = _iso_piece(surfaces, pc, frame, tol)
                 replaced += new is not None
                 pieces.append(new or pc)
             wires.append(_wire(pieces, tol))
         if not replaced:
             return section
-        plane = BRep_Tool.Surface_s(section)
+        plane = BRep_Tool.Surface_s(fwd)
         mk = BRepBuilderAPI_MakeFace(plane, wires[0])
         for w in wires[1:]:
             mk.Add(w)
