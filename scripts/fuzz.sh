@@ -19,7 +19,6 @@ echo "== 2D: ${n2d} examples per strategy"
 MEDIALCAD_HYPOTHESIS_EXAMPLES="$n2d" .venv/bin/pytest -q -rxXf -p no:cacheprovider \
     tests/test_mat2d_oracle.py -k random || rc=1
 echo "== 3D: ${n3d} examples per strategy"
-# the 3D tests run a quarter of MEDIALCAD_HYPOTHESIS_EXAMPLES
-MEDIALCAD_HYPOTHESIS_EXAMPLES="$((n3d * 4))" .venv/bin/pytest -q -rxXf -p no:cacheprovider \
+MEDIALCAD_HYPOTHESIS_EXAMPLES_3D="$n3d" .venv/bin/pytest -q -rxXf -p no:cacheprovider \
     tests/test_mat3d_extrusion.py tests/test_mat3d_revolution.py -k "random" || rc=1
 exit "$rc"

@@ -7,8 +7,10 @@ bash scripts/setup_venv.sh
 bash scripts/system_deps.sh
 
 export MPLBACKEND=Agg
-# random faces per hypothesis strategy (the suite default is 6; more in CI)
-export MEDIALCAD_HYPOTHESIS_EXAMPLES="${MEDIALCAD_HYPOTHESIS_EXAMPLES:-20}"
+# random examples per hypothesis strategy (the suite default is 6 faces and 2 solids; more in
+# CI: 4 x 50 faces and 7 x 5 solids, 235 examples)
+export MEDIALCAD_HYPOTHESIS_EXAMPLES="${MEDIALCAD_HYPOTHESIS_EXAMPLES:-50}"
+export MEDIALCAD_HYPOTHESIS_EXAMPLES_3D="${MEDIALCAD_HYPOTHESIS_EXAMPLES_3D:-5}"
 
 # Lint only the folders that exist (bench/ may be absent in a fresh clone).
 paths=()

@@ -498,10 +498,12 @@ def test_feet_across_the_seam_of_a_periodic_profile() -> None:
 
 # --------------------------------------------------------------------------- random solids
 
+# 3D examples cost ~10x the 2D ones: MEDIALCAD_HYPOTHESIS_EXAMPLES_3D per profile strategy,
+# by default a quarter of the 2D budget
 _EXAMPLES = int(os.environ.get("MEDIALCAD_HYPOTHESIS_EXAMPLES", "6"))
-# 3D examples cost ~10x the 2D ones: a quarter of the 2D budget per profile strategy
+_EXAMPLES_3D = int(os.environ.get("MEDIALCAD_HYPOTHESIS_EXAMPLES_3D", str(max(1, _EXAMPLES // 4))))
 HYPO3 = settings(
-    max_examples=max(1, _EXAMPLES // 4),
+    max_examples=_EXAMPLES_3D,
     phases=[Phase.explicit, Phase.reuse, Phase.generate]
     + ([Phase.shrink] if os.environ.get("MEDIALCAD_HYPOTHESIS_SHRINK") else []),
     derandomize=not os.environ.get("MEDIALCAD_HYPOTHESIS_RANDOM"),

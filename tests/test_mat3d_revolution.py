@@ -1047,13 +1047,19 @@ def test_quarter_cylinder_read_as_a_revolution_is_refused() -> None:
 # --------------------------------------------------------------------------- random profiles
 
 # Conventions of tests/test_mat2d_oracle.py: no shrinking unless MEDIALCAD_HYPOTHESIS_SHRINK,
-# derandomized unless MEDIALCAD_HYPOTHESIS_RANDOM; a quarter of MEDIALCAD_HYPOTHESIS_EXAMPLES
-# (at least 2) examples: a 3D case costs about four 2D ones.
+# derandomized unless MEDIALCAD_HYPOTHESIS_RANDOM; MEDIALCAD_HYPOTHESIS_EXAMPLES_3D examples,
+# by default a quarter of MEDIALCAD_HYPOTHESIS_EXAMPLES (at least 2): a 3D case costs about
+# four 2D ones.
 _PHASES = [Phase.explicit, Phase.reuse, Phase.generate] + (
     [Phase.shrink] if os.environ.get("MEDIALCAD_HYPOTHESIS_SHRINK") else []
 )
 HYPO = settings(
-    max_examples=max(2, int(os.environ.get("MEDIALCAD_HYPOTHESIS_EXAMPLES", "6")) // 4),
+    max_examples=int(
+        os.environ.get(
+            "MEDIALCAD_HYPOTHESIS_EXAMPLES_3D",
+            str(max(2, int(os.environ.get("MEDIALCAD_HYPOTHESIS_EXAMPLES", "6")) // 4)),
+        )
+    ),
     phases=_PHASES,
     derandomize=not os.environ.get("MEDIALCAD_HYPOTHESIS_RANDOM"),
     deadline=None,
