@@ -126,6 +126,13 @@ def _project(curve: Any, p: FloatArray) -> tuple[float, float]:
     return float(proj.LowerDistanceParameter()), float(proj.LowerDistance())
 
 
+def _angle(surface: Any, u: float, v: float, frame: Frame) -> float:
+    """The angle of the surface point ``(u, v)`` about the axis, from the section plane
+    (the frame: x radial, y along the axis, z normal to the section plane)."""
+    q = _value(surface.UIso(u), v) - frame.origin
+    return math.atan2(float(q @ frame.zdir), float(q @ frame.xdir))
+
+
 def _iso_piece(
     surfaces: list[tuple[Any, tuple[float, ...]]],
     old: _Piece,
@@ -141,19 +148,15 @@ def _iso_piece(
         uv = sas.ValueOfUV(gp_Pnt(*mid), tol)
         if sas.Gap() > tol:
             continue
-        u = uv.X()
-        # the half-plane's angle exactly: turn the iso-curve into the section plane
-        # (the frame: x radial, y along the axis, z normal to the section plane)
-        # (the sense of u about the frame's axis read off the surface itself: a mirrored
+        u, v = uv.X(), uv.Y()
+        # the half-plane's angle exactly: turn the iso-curve into the section plane (the
+        # sense of u about the frame's axis read off the surface itself: a mirrored
         # placement turns the other way)
-        def angle(uu: float) -> float:
-            q = _value(s.UIso(uu), uv.Y()) - frame.origin
-            return math.atan2(float(q @ frame.zdir), float(q @ frame.xdir))
-
-        a0 = angle(u)
-        sign = 1.0 if math.remainder(angle(u + 1e-3) - a0, 2 * math.pi) > 0 else -1.0
+        a0 = _angle(s, u, v, frame)
+        turn = math.remainder(_angle(s, u + 1e-3, v, frame) - a0, 2 * math.pi)
+        sign = 1.0 if turn > 0 else -1.0
         for _ in range(2):
-            u -= sign * angle(u)
+            u -= sign * _angle(s, u, v, frame)
         iso = s.UIso(u)
         tm, dm = _project(iso, mid)
         if dm > tol:
