@@ -14,9 +14,17 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 from OCP.BRep import BRep_Tool
+from OCP.BRepBuilderAPI import (
+    BRepBuilderAPI_MakeEdge,
+    BRepBuilderAPI_MakeFace,
+    BRepBuilderAPI_MakeWire,
+)
+from OCP.Geom import Geom_BSplineCurve
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.STEPControl import STEPControl_Reader
+from OCP.TColgp import TColgp_Array1OfPnt
+from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS
@@ -181,6 +189,77 @@ def test_curvature_jump_at_a_periodic_seam_ends_at_the_high_side_centre() -> Non
     assert np.linalg.norm(best.point - centre) <= res.tol
     assert abs(best.radius - 1.0 / k[0]) <= res.tol
     check_with_oracles(face, "C1 seam blob", n_boundary=80, per_branch=12)
+
+
+# a fresh random blob of 2026-12-02 (placed in space as drawn): a periodic cubic with end
+# knots of multiplicity 2, bending with curvature 9.44 just before its seam and -3.66
+# (concave) just after it
+_JUMP_POLES = [
+    (161.55341483814337, 954.4772201503445, -250.70844231359214),
+    (161.37977786515054, 954.6482987639201, -250.68309971769557),
+    (161.25674644066805, 954.9372322452413, -250.6610797701765),
+    (161.07428149150348, 955.435715327937, -250.62672724850538),
+    (160.6453888509512, 955.1438402925246, -250.58143898671727),
+    (160.36365514989666, 954.9659668441406, -250.5513540692134),
+    (159.7179024363781, 954.7331448146648, -250.47816059181332),
+    (160.42318545743913, 954.4925311388694, -250.5700917635697),
+    (160.33184220968934, 953.7399988800298, -250.57717247037345),
+    (160.89715092355877, 954.4086896095971, -250.62998524290563),
+    (161.55259550841626, 953.6567610458638, -250.7282199751718),
+]
+_JUMP_KNOTS = [
+    0.0,
+    0.4266866471162471,
+    0.8444189112461274,
+    1.2677777736645814,
+    1.576794768039529,
+    2.0606078759722277,
+    2.5411359770600876,
+    2.9964259769364614,
+    3.4544844279873312,
+    4.086298032322233,
+    4.6553945242776065,
+]
+
+
+def _periodic_face(poles: list, knots: list, mults: list) -> Any:
+    pp = TColgp_Array1OfPnt(1, len(poles))
+    for i, p in enumerate(poles, 1):
+        pp.SetValue(i, gp_Pnt(*p))
+    kk, mm = TColStd_Array1OfReal(1, len(knots)), TColStd_Array1OfInteger(1, len(knots))
+    for i, (k, m) in enumerate(zip(knots, mults, strict=True), 1):
+        kk.SetValue(i, k)
+        mm.SetValue(i, m)
+    edge = BRepBuilderAPI_MakeEdge(Geom_BSplineCurve(pp, kk, mm, 3, True)).Edge()
+    return BRepBuilderAPI_MakeFace(BRepBuilderAPI_MakeWire(edge).Wire(), True).Face()
+
+
+def test_curvature_jump_to_a_concave_side_ends_at_the_high_side_centre() -> None:
+    """A C1 seam where the curvature falls from 9.44 to -3.66: the branch's end is the high
+    side's centre of curvature ``p + n/k-`` at the seam. The samples' bracket stopped
+    1.3e-4 short of the seam; the search beyond it (a window twice as wide, by golden
+    section) put both first probes past the jump, found only the concave side and kept the
+    bracket's end: 7.5 tol off, 5.1 tol unsound. The search now marches out in doubling
+    steps while the curvature rises and closes in on the highest probe."""
+    face = _periodic_face(_JUMP_POLES, _JUMP_KNOTS, [2, *[1] * 9, 2])
+    edge = TopoDS.Edge_s(TopExp_Explorer(face, TopAbs_EDGE).Current())
+    curve = BRep_Tool.Curve_s(edge, 0.0, 0.0)
+    t0, t1 = BRep_Tool.Range_s(edge)
+    k = []
+    for t in (t0, t1):
+        p, d1, d2 = gp_Pnt(), gp_Vec(), gp_Vec()
+        curve.D2(t, p, d1, d2)
+        k.append(d1.Crossed(d2).Magnitude() / d1.Magnitude() ** 3)
+    assert k[1] > 2 * k[0]  # the jump this test is about (the low side is concave)
+    fb = O.FaceBoundary(face)
+    b, n = fb.inward_normal(0, t1)
+    centre = b + n / k[1]
+    res = compute(face)
+    ends = [nd for nd in res.nodes if nd.kind == "curvature_centre"]
+    best = min(ends, key=lambda nd: float(np.linalg.norm(nd.point - centre)))
+    assert np.linalg.norm(best.point - centre) <= res.tol
+    assert abs(best.radius - 1.0 / k[1]) <= res.tol
+    check_with_oracles(face, "C1 seam blob, concave side", n_boundary=80, per_branch=12)
 
 
 @pytest.mark.parametrize("b", [1.0, 0.4])

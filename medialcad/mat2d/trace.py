@@ -328,29 +328,79 @@ class _Tracer:
         best = self._golden_max(loop, a, b)
         # the maximum can lie outside the samples' bracket: at a curvature jump (a C1
         # seam or knot, the high side's curvature falling away from it) the self samples
-        # start only a little after it. While the maximum sits at an end of the bracket
-        # that is not the end of the curve, search again beyond that end, twice as wide
-        width = b - a
+        # start only a little after it. When the maximum sits at an end of the bracket
+        # that is not the end of the curve, march on beyond that end in doubling steps
+        # while the curvature rises (a window searched by golden section alone can put
+        # both first probes past a jump and lose it: a blob's end 7.5 tol short of its
+        # seam), then close in on the highest probe
         # (not on a curve of constant curvature, an arc: there every point is a maximum)
         constant = e.piece is not None and e.piece.curve.constant_curvature is not None
-        for _ in range(0 if constant else 12):
-            x, k = best[5], best[2]
-            stop = 4e-3 * self.cfg.eps_s
-            if x - a < stop and a > lo:
-                b, a = a + stop, max(lo, a - width)
-            elif b - x < stop and b < hi:
-                a, b = b - stop, min(hi, b + width)
-            else:
-                break
-            width *= 2.0
-            again = self._golden_max(loop, a, b)
-            if again[2] <= k * (1.0 + 1e-12):  # no higher beyond the end: it stands
-                break
-            best = again
+        stop = 4e-3 * self.cfg.eps_s
+        x = best[5]
+        side = -1.0 if x - a < stop and a > lo else 1.0 if b - x < stop and b < hi else 0.0
+        if side and not constant:
+            best = self._march_max(loop, best, side, lo, hi, stop)
         p, n, k, ei, t, _ = best
         if k <= 0:
             raise ComputationError("self-partner point on a non-convex boundary stretch")
         return p + n / k, 1.0 / k, p, ei, t
+
+    def _march_max(
+        self,
+        loop: int,
+        best: tuple[FloatArray, FloatArray, float, int, float, float],
+        side: float,
+        lo: float,
+        hi: float,
+        stop: float,
+    ) -> tuple[FloatArray, FloatArray, float, int, float, float]:
+        """The curvature maximum beyond ``best`` (a bracket end) on ``side``: steps of
+        ``stop * 2^j`` while the curvature rises by more than rounding, then a golden
+        section that keeps the highest probe inside its bracket (a maximum at a jump is
+        approached from its high side). ``best`` itself when nothing beyond is higher."""
+
+        def probe(x: float) -> tuple[FloatArray, FloatArray, float, int, float, float]:
+            q = self.frame_s(loop, x)
+            return (*q, x)
+
+        x0 = best[5]
+        prev, cur = best, best
+        step = stop
+        nxt = None
+        for _ in range(80):
+            x = min(hi, max(lo, x0 + side * step))
+            cand = probe(x)
+            if cand[2] - cur[2] <= 1e-14 * abs(cur[2]):
+                nxt = cand
+                break
+            prev, cur = cur, cand
+            if x in (lo, hi):
+                break
+            step *= 2.0
+        if cur is best:
+            return best
+        if nxt is None:  # rising up to the end of the search: its end rules
+            return cur
+        # the triple prev < cur > nxt (along ``side``): golden section on it
+        g = 0.5 * (3.0 - np.sqrt(5.0))
+        a, b = sorted((prev[5], nxt[5]))
+        for _ in range(200):
+            if b - a < 1e-3 * self.cfg.eps_s:
+                break
+            xc = cur[5]
+            u = xc + g * (b - xc) if b - xc > xc - a else xc - g * (xc - a)
+            cand = probe(u)
+            if cand[2] > cur[2]:
+                if u > xc:
+                    a = xc
+                else:
+                    b = xc
+                cur = cand
+            elif u > xc:
+                b = u
+            else:
+                a = u
+        return cur
 
     def _golden_max(
         self, loop: int, a: float, b: float
