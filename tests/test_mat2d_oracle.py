@@ -262,6 +262,22 @@ def test_curvature_jump_to_a_concave_side_ends_at_the_high_side_centre() -> None
     check_with_oracles(face, "C1 seam blob, concave side", n_boundary=80, per_branch=12)
 
 
+@pytest.mark.parametrize(("bump", "rf"), [(5e-4, 0.05), (2e-3, 0.05), (5e-4, 0.2), (1e-2, 0.02)])
+def test_tiny_fillet_at_a_nearly_flat_corner_has_its_spoke(bump: float, rf: float) -> None:
+    """A nearly flat convex corner (turning by ``2 bump`` rad) rounded by a fillet: the arc
+    is only ``2 bump rf`` long, and the spoke from the branch point to the arc's centre is
+    fed by a stretch of that order around it, far below the sample spacing. The arc's own
+    samples all see their osculating disk and the lines' next samples the far side: the
+    spoke was missed (a fresh random line-arc face, 0.22 diag incomplete; here 0.12 diag
+    unsound for ``bump = 5e-4``). Short arcs that turn little now get the samples closing
+    in on them that nearly flat corners get."""
+    pts = [(-1, -1), (1, -1), (1 + bump, 0), (1, 1), (-1, 1)]
+    face = F.place(F.filleted_polygon(pts, [0, 0, rf, 0, 0]), F.random_placement(3))
+    res = compute(face)
+    assert len(res.branches) == 6
+    check_with_oracles(face, f"tiny fillet {bump} {rf}", n_boundary=80, per_branch=12)
+
+
 @pytest.mark.parametrize("b", [1.0, 0.4])
 def test_ellipse_of_two_halves_ends_at_the_curvature_centres(b: float) -> None:
     """An ellipse written as two half-ellipse edges joined at its vertices (common in STEP):

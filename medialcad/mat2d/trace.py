@@ -32,7 +32,7 @@ from scipy.spatial import cKDTree
 from medialcad.errors import ComputationError
 from medialcad.frame import Frame
 from medialcad.mat2d.boundary import Boundary
-from medialcad.mat2d.curves import LineCurve
+from medialcad.mat2d.curves import CircleCurve, LineCurve
 from medialcad.mat2d.graph import (
     BoundaryElement,
     Branch,
@@ -119,20 +119,31 @@ def _near_flat_corners(
     order = np.lexsort((S.s, S.loop))
     loops, ss = S.loop[order], S.s[order]
     line_end = _line_line_corners(boundary)
-    for c in boundary.corners:
-        if not 0 < c.turn < np.pi / 6:
+    # (loop, s, turn, is an arc): convex corners, and arcs shorter than the spacing that
+    # turn as little (a tiny fillet rounding a nearly flat corner: its spoke, ending at the
+    # arc's centre, is fed by the same short stretch around it, and the arc's own samples
+    # all see the osculating disk)
+    spots = [(c.loop, c.s, c.turn, False) for c in boundary.corners]
+    for e in boundary.elements:
+        if e.piece is not None and isinstance(e.piece.curve, CircleCurve):
+            turn = e.length / e.piece.curve.radius
+            convex = boundary.frame_at(e, np.array([0.5 * (e.piece.t0 + e.piece.t1)]))[2][0] > 0
+            if convex and e.length < cfg.spacing:
+                spots.append((e.loop, e.s0 + 0.5 * e.length, turn, True))
+    for loop, s_c, turn, arc in spots:
+        if not 0 < turn < np.pi / 6:
             continue
         # not closer than where the two sides are collinear within coordinate noise,
         # unless both are lines (their disks are solved by symmetry about the corner)
-        if (c.loop, c.s) in line_end:
+        if (loop, s_c) in line_end:
             lo = 1e-2 * cfg.eps_s
         else:
-            lo = max(1e-10 * boundary.diag / c.turn, cfg.eps_s)
+            lo = max(1e-10 * boundary.diag / turn, cfg.eps_s)
         if lo >= cfg.spacing:
             continue
-        a, b = np.searchsorted(loops, [c.loop, c.loop + 1])
-        if b - a >= 2:
-            k = a + int(np.searchsorted(ss[a:b], c.s))
+        a, b = np.searchsorted(loops, [loop, loop + 1])
+        if b - a >= 2 and not arc:
+            k = a + int(np.searchsorted(ss[a:b], s_c))
             before, after = order[a + (k - a - 1) % (b - a)], order[a + (k - a) % (b - a)]
             if (
                 S.partner_element[before] == S.element[after]
@@ -140,8 +151,8 @@ def _near_flat_corners(
             ):
                 continue
         d = np.geomspace(cfg.spacing, lo, 24)
-        add_s.append(np.concatenate([c.s - d, c.s + d]) % boundary.loop_lengths[c.loop])
-        add_l.append(np.full(2 * len(d), c.loop, dtype=np.int64))
+        add_s.append(np.concatenate([s_c - d, s_c + d]) % boundary.loop_lengths[loop])
+        add_l.append(np.full(2 * len(d), loop, dtype=np.int64))
     if not add_s:
         return np.zeros(0, dtype=np.int64), np.zeros(0)
     return np.concatenate(add_l), np.concatenate(add_s)
