@@ -1085,6 +1085,34 @@ def _check_random(face: Any, margin: float, angle: float, seed: int, label: str)
         assert_oracles(num, seams=False)
 
 
+def test_reflex_vertex_off_its_adjacent_line_by_the_joint_tolerance() -> None:
+    """A fresh random polygonal revolution (2026-12-02, seed 664; kept exactly as binary
+    BREP) whose profile has a reflex vertex 4e-9 off the line of an adjacent edge (within
+    the joint's tolerance). The closed form of that line gave the vertex's samples disks
+    of radius ~3e-8, an isolated "jump" to a disk of radius 0.33 became a branch point of
+    radius 0.17 (the mean) with a foot 0.45 away, and the 2D MAT never reached the
+    tolerance. A line ending at a reflex vertex is behind every normal of it (and the
+    vertex on the tangent of its own line): no partner, exactly."""
+    from OCP.BinTools import BinTools
+    from OCP.TopoDS import TopoDS_Shape
+
+    shape = TopoDS_Shape()
+    BinTools.Read_s(
+        shape, str(Path(__file__).parent / "data" / "polygon_revolution_spurious_foot.bbrep")
+    )
+    _, num = mat_and_numbers(shape, "reflex vertex off its line", n_complete=60)
+    assert_oracles(num, seams=False)
+    from medialcad import medial_axis_2d
+
+    reading = recognize(shape)
+    assert isinstance(reading, Revolution)
+    graph = medial_axis_2d(reading.profile)
+    for node in graph.nodes:
+        for f in node.footpoints:
+            gap = abs(float(np.linalg.norm(f.point_2d - node.point_2d)) - node.radius)
+            assert gap <= graph.tol, f"node {node.index}: a foot {gap:.3g} off its disk"
+
+
 @HYPO
 @given(
     face=st.one_of(F.star_polygon_strategy(), F.polygon_with_holes_strategy()),

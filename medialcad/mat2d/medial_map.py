@@ -460,7 +460,11 @@ def _lines_pairs(
     end_val, low = _end_values(f_lo, f_hi, el, own, C, pen)
     val = np.where(inside, rho, end_val)
     par = np.where(inside, tf, np.where(low, lo, hi))
-    return np.where(own == el, np.inf, val), par
+    # a line ending at the sample's own reflex vertex lies behind every normal of it:
+    # exactly no partner (the vertex can sit off the line by the joint's tolerance, and the
+    # closed form then found disks of radius ~1e-8 there)
+    beside = (C.kind[own] == VERTEX) & ((C.touch[el, 0] == own) | (C.touch[el, 1] == own))
+    return np.where((own == el) | beside, np.inf, val), par
 
 
 def _across_corner(
@@ -722,6 +726,10 @@ def _solve_pairs(
     if len(sel):
         r = rows[sel]
         v = _f_values(C.vert_p[pos[sel]], R.b[r], R.n[r], tiny)
+        # a reflex vertex ending the sample's own line lies on its tangent: no partner
+        own, ev = R.own[r], els[sel]
+        beside = (C.kind[own] == LINE) & ((C.ring[own, 0] == ev) | (C.ring[own, 1] == ev))
+        v = np.where(beside, np.inf, v)
         parts.append((r, v, np.zeros(len(r)), np.full(len(r), VERTEX), els[sel]))
     sel = np.nonzero(kind == GENERAL)[0]
     gv, ge, gp = _general_pairs(boundary, C, R, rows[sel], pos[sel], tiny, pen)
