@@ -244,3 +244,54 @@ def test_periodic_bspline_only_c1_at_its_seam() -> None:
     assert O.radius_error_2d(fb, nodes, [n.radius for n in mat.nodes]).max() <= mat.tol
     assert cycle_rank(mat) == (1, 0)
     _check_oracles(face, mat)
+
+
+def test_line_across_a_nearly_flat_corner_with_a_joint_gap_is_still_the_partner() -> None:
+    """The disk across a nearly flat convex corner between two lines is solved by symmetry
+    about the corner, ``r = d / tan(turn / 2)`` for a point ``d`` from it; the lines' ends
+    may be apart by the joint's tolerance, and the segment then lies off that disk (by
+    about ``2 gap / turn^2``). The exact test of which line segments a disk reaches must not
+    drop it: wherever the symmetric disk is smaller than every disk the far lines allow
+    (brute force over dense points of them), the partner is the line across the corner
+    (samples just before the spoke's branch point took the far side,
+    1e-3 off, when it was dropped)."""
+    from medialcad.mat2d.boundary import EdgePiece, build_boundary
+    from medialcad.mat2d.curves import LineCurve
+    from medialcad.mat2d.medial_map import build_candidates, evaluate
+
+    def line(p: tuple[float, float], q: tuple[float, float], k: int) -> EdgePiece:
+        a, b = np.array(p, float), np.array(q, float)
+        d = b - a
+        length = float(np.linalg.norm(d))
+        return EdgePiece(LineCurve(a, d / length), 0.0, length, k)
+
+    bump = 5e-4
+    for gap in (1e-8, 1e-7):
+        v, w = (1 + bump, 0.0), (1 + bump + gap, 0.0)
+        ends = [
+            ((-1, -1), (1, -1)),
+            ((1, -1), v),
+            (w, (1, 1)),
+            ((1, 1), (-1, 1)),
+            ((-1, 1), (-1, -1)),
+        ]
+        loop = [line(p, q, k) for k, (p, q) in enumerate(ends)]
+        boundary = build_boundary([loop], gap_tol=1e-6, angle_tol=1e-12)
+        cands = build_candidates(boundary, 0.01)
+        e = boundary.elements[1]
+        dist = np.concatenate([np.geomspace(1e-3, 1e-7, 600), np.linspace(4.8e-4, 5.1e-4, 1500)])
+        m = evaluate(
+            boundary, cands, np.zeros(len(dist), dtype=np.int64), e.s0 + e.length - dist, 1e-6
+        )
+        turn = 2 * np.arctan(bump)
+        r_sym = dist / np.tan(turn / 2)
+        # the far lines (0, 3, 4), densely: f(q) = |q - b|^2 / (2 (q - b).n)
+        q = np.vstack([np.linspace(ends[k][0], ends[k][1], 4001) for k in (0, 3, 4)])
+        dq = q[None, :, :] - m.foot[:, None, :]
+        ahead = np.einsum("ijk,ik->ij", dq, m.normal)
+        with np.errstate(divide="ignore"):
+            f = np.where(ahead > 1e-12, np.einsum("ijk,ijk->ij", dq, dq) / (2 * ahead), np.inf)
+        r_far = f.min(axis=1)
+        across = r_sym < r_far - 1e-6
+        assert across.sum() > 100
+        assert np.all(m.partner_element[across] == 2), f"gap {gap}: the far side took over"

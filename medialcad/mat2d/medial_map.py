@@ -755,7 +755,7 @@ def _solve_pairs(
 
 
 def _near_elements(
-    C: Candidates, centre: FloatArray, radius: FloatArray
+    C: Candidates, centre: FloatArray, radius: FloatArray, own: IntArray
 ) -> tuple[IntArray, IntArray]:
     """Pairs ``(row, element)`` whose element's bounding circle meets the disk
     ``(centre[row], radius[row])``, sorted by row then element. The nearest few centres
@@ -793,7 +793,12 @@ def _near_elements(
         t = np.clip(_dot(c - o, d) / _dot(d, d), C.line_lo[k], C.line_hi[k])
         gap = np.linalg.norm(c - (o + t[:, None] * d), axis=1)
         rl = radius[r[line]]
-        far = gap > rl * (1 + 1e-9) + 1e-12 * C.diag
+        # (not a line across a corner from the sample's own element: its disk is solved by
+        # symmetry about the corner, which does not see a joint's gap, and the segment
+        # itself can sit off that disk by the gap)
+        o_r, jl = own[r[line]], j[line]
+        beside = (C.touch[jl, 0] == o_r) | (C.touch[jl, 1] == o_r)
+        far = (gap > rl * (1 + 1e-9) + 1e-12 * C.diag) & ~beside
         keep = np.ones(len(r), dtype=bool)
         keep[line[far]] = False
         r, j = r[keep], j[keep]
@@ -858,7 +863,7 @@ def _global_min(
         sub = R.take(active)
         ra = reach[active]
         full = ra > 4.0 * diag  # no element ahead of b at all: solve against everything
-        rows, els = _near_elements(C, sub.b + ra[:, None] * sub.n, ra)
+        rows, els = _near_elements(C, sub.b + ra[:, None] * sub.n, ra, sub.own)
         if np.any(full):
             fr = np.nonzero(full)[0]
             keep = ~full[rows]
