@@ -158,6 +158,32 @@ def test_fuzzed_blob_has_no_stray_curvature_centre() -> None:
     check_with_oracles(face, "fuzzed blob", n_boundary=80, per_branch=12)
 
 
+def _seam_curvatures(face: Any) -> tuple[tuple[float, float], list[float]]:
+    """The parameter range of a one-edge face and the curvature at its two ends (from the
+    curve's own D2: the two sides of its seam)."""
+    edge = TopoDS.Edge_s(TopExp_Explorer(face, TopAbs_EDGE).Current())
+    curve = BRep_Tool.Curve_s(edge, 0.0, 0.0)
+    t0, t1 = BRep_Tool.Range_s(edge)
+    k = []
+    for t in (t0, t1):
+        p, d1, d2 = gp_Pnt(), gp_Vec(), gp_Vec()
+        curve.D2(t, p, d1, d2)
+        k.append(d1.Crossed(d2).Magnitude() / d1.Magnitude() ** 3)
+    return (t0, t1), k
+
+
+def _assert_ends_at_centre_of_curvature(face: Any, t: float, k: float) -> None:
+    """A curvature-centre node of the face's MAT is ``p + n/k`` (the boundary point at
+    parameter ``t`` of its one edge) with radius ``1/k``, within tol."""
+    b, n = O.FaceBoundary(face).inward_normal(0, t)
+    centre = b + n / k
+    res = compute(face)
+    ends = [nd for nd in res.nodes if nd.kind == "curvature_centre"]
+    best = min(ends, key=lambda nd: float(np.linalg.norm(nd.point - centre)))
+    assert np.linalg.norm(best.point - centre) <= res.tol
+    assert abs(best.radius - 1.0 / k) <= res.tol
+
+
 def test_curvature_jump_at_a_periodic_seam_ends_at_the_high_side_centre() -> None:
     """cadquery's periodic interpolation is only C1 at its seam (end knots of multiplicity
     2): this blob (the full suite's derandomized draw, seed 65535) bends with curvature
@@ -171,23 +197,9 @@ def test_curvature_jump_at_a_periodic_seam_ends_at_the_high_side_centre() -> Non
         F.bspline_blob([*radii, 0.7540496409925488, 0.5292643799679275, 0.7914028029945436]),
         F.random_placement(65535),
     )
-    edge = TopoDS.Edge_s(TopExp_Explorer(face, TopAbs_EDGE).Current())
-    curve = BRep_Tool.Curve_s(edge, 0.0, 0.0)
-    t0, t1 = BRep_Tool.Range_s(edge)
-    k = []
-    for t in (t0, t1):
-        p, d1, d2 = gp_Pnt(), gp_Vec(), gp_Vec()
-        curve.D2(t, p, d1, d2)
-        k.append(d1.Crossed(d2).Magnitude() / d1.Magnitude() ** 3)
+    ts, k = _seam_curvatures(face)
     assert k[0] > 3 * k[1]  # the jump this test is about
-    fb = O.FaceBoundary(face)
-    b, n = fb.inward_normal(0, t0)
-    centre = b + n / k[0]
-    res = compute(face)
-    ends = [nd for nd in res.nodes if nd.kind == "curvature_centre"]
-    best = min(ends, key=lambda nd: float(np.linalg.norm(nd.point - centre)))
-    assert np.linalg.norm(best.point - centre) <= res.tol
-    assert abs(best.radius - 1.0 / k[0]) <= res.tol
+    _assert_ends_at_centre_of_curvature(face, ts[0], k[0])
     check_with_oracles(face, "C1 seam blob", n_boundary=80, per_branch=12)
 
 
@@ -242,23 +254,9 @@ def test_curvature_jump_to_a_concave_side_ends_at_the_high_side_centre() -> None
     bracket's end: 7.5 tol off, 5.1 tol unsound. The search now marches out in doubling
     steps while the curvature rises and closes in on the highest probe."""
     face = _periodic_face(_JUMP_POLES, _JUMP_KNOTS, [2, *[1] * 9, 2])
-    edge = TopoDS.Edge_s(TopExp_Explorer(face, TopAbs_EDGE).Current())
-    curve = BRep_Tool.Curve_s(edge, 0.0, 0.0)
-    t0, t1 = BRep_Tool.Range_s(edge)
-    k = []
-    for t in (t0, t1):
-        p, d1, d2 = gp_Pnt(), gp_Vec(), gp_Vec()
-        curve.D2(t, p, d1, d2)
-        k.append(d1.Crossed(d2).Magnitude() / d1.Magnitude() ** 3)
+    ts, k = _seam_curvatures(face)
     assert k[1] > 2 * k[0]  # the jump this test is about (the low side is concave)
-    fb = O.FaceBoundary(face)
-    b, n = fb.inward_normal(0, t1)
-    centre = b + n / k[1]
-    res = compute(face)
-    ends = [nd for nd in res.nodes if nd.kind == "curvature_centre"]
-    best = min(ends, key=lambda nd: float(np.linalg.norm(nd.point - centre)))
-    assert np.linalg.norm(best.point - centre) <= res.tol
-    assert abs(best.radius - 1.0 / k[1]) <= res.tol
+    _assert_ends_at_centre_of_curvature(face, ts[1], k[1])
     check_with_oracles(face, "C1 seam blob, concave side", n_boundary=80, per_branch=12)
 
 
