@@ -141,6 +141,8 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
         graph = trace_medial_graph(boundary, pf.frame, settings)
     except MedialCadError:
         raise
+    except MemoryError as err:
+        raise ComputationError("medial axis computation ran out of memory") from err
     except (ArithmeticError, ValueError, IndexError, KeyError, TypeError, AssertionError) as err:
         raise ComputationError(
             f"medial axis computation failed: {type(err).__name__}: {err}"

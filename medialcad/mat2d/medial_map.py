@@ -20,7 +20,7 @@ element left out has ``f > R`` everywhere.
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from functools import cached_property
 
 import numpy as np
@@ -86,6 +86,8 @@ class Candidates:
     el_len: FloatArray  # (E,)
     el_a: FloatArray  # (E,) parameter (edge) or normal angle (vertex) at s0
     el_b: FloatArray  # (E,) ... at s0 + length
+    el_start: FloatArray  # (E, 2) point at s0 (a vertex: the vertex)
+    el_end: FloatArray  # (E, 2) point at s0 + length
     bound_c: FloatArray  # (E, 2) bounding circle of each element
     bound_h: FloatArray  # (E,)
     trees: tuple[tuple[cKDTree, IntArray, float], ...]  # (tree of centres, ids, largest h)
@@ -258,6 +260,7 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
         return np.array([r[i] for r in rows], dtype=float)
 
     touch = _touching(boundary)
+    ends = _end_points(boundary)
     line_o, line_d = col(lines, 1, 2), col(lines, 2, 2)
     line_ids = np.array([r[0] for r in lines], dtype=i64)
     vert_p = col(verts, 1, 2)
@@ -301,12 +304,26 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
         el_len=np.array([e.length for e in boundary.elements]),
         el_a=el_a,
         el_b=el_b,
+        el_start=ends[:, 0],
+        el_end=ends[:, 1],
         bound_c=bound_c,
         bound_h=bound_h,
         trees=_size_trees(bound_c, bound_h, boundary.diag),
         cloud=cKDTree(np.vstack(cloud)),
         diag=boundary.diag,
     )
+
+
+def _end_points(boundary: Boundary) -> FloatArray:
+    """For each element, its points at ``s0`` and ``s0 + length``, ``(E, 2, 2)``."""
+    out = np.zeros((len(boundary.elements), 2, 2))
+    for e in boundary.elements:
+        if e.piece is None:
+            assert e.vertex is not None
+            out[e.index] = e.vertex
+        else:
+            out[e.index] = e.piece.curve.point(np.array([e.piece.t0, e.piece.t1]))
+    return out
 
 
 def _touching(boundary: Boundary) -> IntArray:
@@ -706,16 +723,97 @@ def _refine_element(
     return rr[win], fv[win], t[win]
 
 
+def _joint_shifts(
+    C: Candidates, R: _Rows, rows: IntArray, els: IntArray
+) -> tuple[IntArray, FloatArray]:
+    """For each (sample, element) pair: which joint joins the sample's own element to the
+    partner (0: none; 1, 2: the own element's end, start; 3, 4: the same across a reflex
+    vertex between them) and the shift of ``b`` that closes that joint's gap.
+
+    Joints are consistent only to their tolerance (~1e-8 in real files). Next to a joint
+    ``f`` is ill-conditioned: a partner's end a gap ``g`` ahead of ``b`` at a distance
+    ``d`` gives ``f ~ d^2 / 2g``, a spurious disk where the exact joint has none (a convex
+    arc into a reflex vertex: disks of radius 1e-8..1e-3 instead of 0.7). Solving the pair
+    with ``b`` moved by the gap is solving it against the partner moved onto the own
+    element's end: the exact joint, with the geometry changed by no more than its gap."""
+    own = R.own[rows]
+    ring = C.ring[own]
+    kind = C.kind
+    end, start = C.el_end[own], C.el_start[own]
+    b = R.b[rows]
+    slot = np.zeros(len(rows), dtype=np.int64)
+    shift = np.zeros((len(rows), 2))
+    best = np.full(len(rows), np.inf)
+    cases = (
+        (ring[:, 1] == els, end, C.el_start[els]),
+        (ring[:, 0] == els, start, C.el_end[els]),
+        ((ring[:, 3] == els) & (kind[ring[:, 1]] == VERTEX), end, C.el_start[els]),
+        ((ring[:, 2] == els) & (kind[ring[:, 0]] == VERTEX), start, C.el_end[els]),
+    )
+    for k, (hit, joint, other) in enumerate(cases, start=1):
+        # the nearer joint where a short loop has two with the same partner
+        dist = np.where(hit & (els != own), np.linalg.norm(b - joint, axis=1), np.inf)
+        take = dist < best
+        best = np.where(take, dist, best)
+        slot[take] = k
+        shift[take] = (other - joint)[take]
+    return slot, shift
+
+
 def _solve_pairs(
     boundary: Boundary, C: Candidates, R: _Rows, rows: IntArray, els: IntArray, tiny: float
 ) -> _Best:
     """The minimum of ``f`` per sample over the given (sample, element) pairs: value,
     element and parameter (ties go to lines, then arcs, vertices, general curves, and
-    within a kind to the lower element index)."""
+    within a kind to the lower element index). A partner joined to the sample's own
+    element is solved with that joint's gap closed (:func:`_joint_shifts`)."""
     m = len(R.b)
     pen = 1e-14 * boundary.diag  # a minimum at a segment's end loses ties
-    kind, pos = C.kind[els], C.pos[els]
+    slot, shift = _joint_shifts(C, R, rows, els)
     parts: list[tuple[IntArray, FloatArray, FloatArray, IntArray, IntArray]] = []
+    for k in np.unique(slot):
+        sel = np.nonzero(slot == k)[0]
+        Rk = R
+        if k > 0 and np.any(shift[sel]):
+            b = R.b.copy()
+            b[rows[sel]] += shift[sel]  # a sample has one partner per slot
+            Rk = replace(R, b=b)
+        parts += _pair_values(boundary, C, Rk, rows[sel], els[sel], tiny, pen)
+    r = np.concatenate([x[0] for x in parts])
+    v = np.concatenate([x[1] for x in parts])
+    p = np.concatenate([x[2] for x in parts])
+    blk = np.concatenate([x[3] for x in parts])
+    el = np.concatenate([x[4] for x in parts])
+    best = np.full(m, np.inf)
+    best_e = np.full(m, -1, dtype=np.int64)
+    best_p = np.zeros(m)
+    np.minimum.at(best, r, v)
+    # among a sample's minima, the lowest (kind, element)
+    tie = np.nonzero((v == best[r]) & np.isfinite(v))[0]
+    rank = blk[tie] * (len(C.kind) + 1) + el[tie]
+    first = np.full(m, np.iinfo(np.int64).max)
+    np.minimum.at(first, r[tie], rank)
+    win = tie[rank == first[r[tie]]]
+    best_e[r[win]], best_p[r[win]] = el[win], p[win]
+    return best, best_e, best_p
+
+
+_Parts = list[tuple[IntArray, FloatArray, FloatArray, IntArray, IntArray]]
+
+
+def _pair_values(
+    boundary: Boundary,
+    C: Candidates,
+    R: _Rows,
+    rows: IntArray,
+    els: IntArray,
+    tiny: float,
+    pen: float,
+) -> _Parts:
+    """The minimum of ``f`` per pair by element kind: (rows, values, parameters, kind,
+    elements) blocks (a general curve's: the best per sample over its pairs)."""
+    kind, pos = C.kind[els], C.pos[els]
+    parts: _Parts = []
     for k, fn in ((LINE, _lines_pairs), (CIRCLE, _circles_pairs)):
         sel = np.nonzero(kind == k)[0]
         if len(sel):
@@ -735,23 +833,7 @@ def _solve_pairs(
     gv, ge, gp = _general_pairs(boundary, C, R, rows[sel], pos[sel], tiny, pen)
     has = np.nonzero(np.isfinite(gv))[0]
     parts.append((has, gv[has], gp[has], np.full(len(has), GENERAL), ge[has]))
-    r = np.concatenate([x[0] for x in parts])
-    v = np.concatenate([x[1] for x in parts])
-    p = np.concatenate([x[2] for x in parts])
-    blk = np.concatenate([x[3] for x in parts])
-    el = np.concatenate([x[4] for x in parts])
-    best = np.full(m, np.inf)
-    best_e = np.full(m, -1, dtype=np.int64)
-    best_p = np.zeros(m)
-    np.minimum.at(best, r, v)
-    # among a sample's minima, the lowest (kind, element)
-    tie = np.nonzero((v == best[r]) & np.isfinite(v))[0]
-    rank = blk[tie] * (len(C.kind) + 1) + el[tie]
-    first = np.full(m, np.iinfo(np.int64).max)
-    np.minimum.at(first, r[tie], rank)
-    win = tie[rank == first[r[tie]]]
-    best_e[r[win]], best_p[r[win]] = el[win], p[win]
-    return best, best_e, best_p
+    return parts
 
 
 def _near_elements(

@@ -770,22 +770,32 @@ def _complete_feet(
         pts = np.tile(np.array([e.point for e in evs]), (3, 1))
         lo = np.concatenate([lo - length, lo, lo + length])
         hi = lo + np.tile(ext, 3)
-        order = np.argsort(lo)
-        lo, hi, pts = lo[order], hi[order], pts[order]
-        reach = float(np.max(hi - lo))
         sq = np.mod(s_foot[q], length)
         # events of this loop near the foot; covered by one of the same branch point
-        # (another branch point's event can lie within tol on a dense polygon)
-        j0 = np.searchsorted(lo, sq - width - reach, side="left")
-        j1 = np.searchsorted(lo, sq + width, side="right")
+        # (another branch point's event can lie within tol on a dense polygon). Short
+        # events are found by a window on their sorted starts; the few long ones (a
+        # curvature centre's stretch of an arc) are asked by every foot, in chunks
+        # (one long event in a window as wide as itself made every foot ask every event:
+        # 4e8 pairs where a gap at a joint had scattered events)
+        long = (hi - lo) > 4 * width
+        hit: list[IntArray] = []
+        order = np.argsort(lo[~long])
+        slo, shi, spt = lo[~long][order], hi[~long][order], pts[~long][order]
+        j0 = np.searchsorted(slo, sq - 5 * width, side="left")
+        j1 = np.searchsorted(slo, sq + width, side="right")
         count = np.maximum(j1 - j0, 0)
         row = np.repeat(np.arange(len(q)), count)
         ev = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count)
         ev += np.repeat(j0, count)
-        hit = (hi[ev] >= sq[row] - width) & (
-            np.linalg.norm(pts[ev] - node_pt[q[row]], axis=1) <= radius
-        )
-        covered[q] = np.bincount(row[hit], minlength=len(q)) > 0
+        hit.append(_covering(sq, node_pt[q], row, ev, (slo, shi, spt), width, radius))
+        n_long = int(long.sum())
+        step = max(1, 1_000_000 // max(n_long, 1))
+        for c in range(0, len(q) if n_long else 0, step):
+            rows = np.arange(c, min(c + step, len(q)))
+            row, ev = np.repeat(rows, n_long), np.tile(np.arange(n_long), len(rows))
+            spans = (lo[long], hi[long], pts[long])
+            hit.append(_covering(sq, node_pt[q], row, ev, spans, width, radius))
+        covered[q[np.concatenate(hit)]] = True
         on = np.nonzero(S.loop == lp)[0]
         if len(on):
             on = on[np.argsort(S.s[on])]
@@ -808,6 +818,26 @@ def _complete_feet(
         ):
             kept.append(ev)
     return events + kept
+
+
+def _covering(
+    sq: FloatArray,
+    node_pt: FloatArray,
+    row: IntArray,
+    ev: IntArray,
+    spans: tuple[FloatArray, FloatArray, FloatArray],
+    width: float,
+    radius: float,
+) -> IntArray:
+    """The feet (``row``: foot at loop coordinate ``sq`` of a node at ``node_pt``) that
+    event ``ev`` (``spans``: its start, end and point) covers."""
+    lo, hi, pts = spans
+    ok = (
+        (lo[ev] <= sq[row] + width)
+        & (hi[ev] >= sq[row] - width)
+        & (np.linalg.norm(pts[ev] - node_pt[row], axis=1) <= radius)
+    )
+    return np.asarray(row[ok])
 
 
 def _merge_nodes(events: list[_Event], radius: float) -> int:
@@ -933,6 +963,14 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
         S, events, ok = tr.resolve(S)
         if not ok:
             raise ComputationError("medial axis events did not converge")
+        # a boundary element holds a few events (its branch points, corners, curvature
+        # ends); thousands per element are noise (an ill-conditioned joint), and pairing
+        # their feet would cost quadratic memory
+        if len(events) > 50 * len(boundary.elements) + 500:
+            raise ComputationError(
+                f"the medial axis found {len(events)} events on {len(boundary.elements)} "
+                "boundary elements: the boundary is ill-conditioned at the tolerance"
+            )
         events = _complete_feet(tr, S, events, tol, max(tol, 10 * settings.eps_s))
         intervals, tables = _intervals(S, events, tr.L)
         twin = _twins(S, intervals, tables, tr.L)
@@ -1352,8 +1390,13 @@ def _assemble(
     for iv in kept:
         pts, rad = _branch_arrays(S, iv)
         if iv.start is not None and iv.end is not None and iv.start.node == iv.end.node:
-            extent = np.linalg.norm(pts - iv.start.point, axis=1).max()
-            if extent <= 4 * tol:  # a degenerate stretch between events of one node
+            node = nodes[iv.start.node]
+            extent = np.linalg.norm(pts - node.point_2d, axis=1).max()
+            # a degenerate stretch between events of one node; or a loop that cannot
+            # enclose a hole (it would reach past the node's empty disk): a stretch of a
+            # branch beside the node whose end event merged into it (next to a nearly
+            # flat convex corner by a fillet, where the whole arc maps into 1e-9 of the line)
+            if extent <= max(4 * tol, 0.5 * node.radius):
                 continue
         values = np.column_stack([pts, rad])
         if len(iv.samples) and _straight(tr, S, iv.samples):
