@@ -723,6 +723,9 @@ def _refine_element(
     return rr[win], fv[win], t[win]
 
 
+_Parts = list[tuple[IntArray, FloatArray, FloatArray, IntArray, IntArray]]
+
+
 def _joint_shifts(
     C: Candidates, R: _Rows, rows: IntArray, els: IntArray
 ) -> tuple[IntArray, FloatArray]:
@@ -770,7 +773,7 @@ def _solve_pairs(
     m = len(R.b)
     pen = 1e-14 * boundary.diag  # a minimum at a segment's end loses ties
     slot, shift = _joint_shifts(C, R, rows, els)
-    parts: list[tuple[IntArray, FloatArray, FloatArray, IntArray, IntArray]] = []
+    parts: _Parts = [(rows[:0], np.zeros(0), np.zeros(0), rows[:0], els[:0])]
     for k in np.unique(slot):
         sel = np.nonzero(slot == k)[0]
         Rk = R
@@ -796,9 +799,6 @@ def _solve_pairs(
     win = tie[rank == first[r[tie]]]
     best_e[r[win]], best_p[r[win]] = el[win], p[win]
     return best, best_e, best_p
-
-
-_Parts = list[tuple[IntArray, FloatArray, FloatArray, IntArray, IntArray]]
 
 
 def _pair_values(
