@@ -159,3 +159,45 @@ def test_nearly_flat_convex_corner_beside_a_fillet_gives_a_tree(kink: float) -> 
     assert cycle_rank(mat) == (1, 0)
     assert all(b.start != b.end for b in mat.branches)
     _check(face, mat)
+
+
+@pytest.mark.parametrize(
+    ("kink", "both"),
+    [(1e-4, False), (3e-5, False), (1e-5, False), (3e-6, False), (1e-4, True), (1e-5, True)],
+)
+def test_nearly_flat_convex_corner_at_a_fillets_start_ends_its_branch_at_the_centre(
+    kink: float, both: bool
+) -> None:
+    """The same plate with the right edge meeting the fillet at a convex corner of
+    ``kink`` rad (and, with ``both``, the top line too). The corner's spoke runs along the
+    fillet's normal to its centre, fed by feet within ``kink * r`` of the corner, closer
+    than any sample: the branch between the right edge and the top line lost its event at
+    the centre and was drawn on to the corner, through the face (0.2 diag unsound at kink
+    1e-5). It ends at the fillet's centre; the spoke joins the corner to it."""
+    w = -1.5 * np.tan(kink)
+    h = -2.5 * np.tan(kink) if both else 0.0
+    edges = [
+        _segment((0, 0), (3 + w, 0)),
+        _segment((3 + w, 0), (3, 1.5)),
+        _arc_about((2.5, 1.5), 0.5, 0.0, np.pi / 2),
+        _segment((2.5, 2), (0, 2 + h)),
+        _segment((0, 2 + h), (0, 0)),
+    ]
+    face = _face(edges, 0.0)
+    mat = medialcad.medial_axis_2d(face)
+    assert cycle_rank(mat) == (1, 0)
+    centre = [n for n in mat.nodes if np.linalg.norm(n.point[:2] - [2.5, 1.5]) <= mat.tol]
+    assert len(centre) == 1
+    corner = [n for n in mat.nodes if np.linalg.norm(n.point[:2] - [3, 1.5]) <= mat.tol]
+    assert len(corner) == 1
+    ends = {frozenset((b.start, b.end)) for b in mat.branches}
+    assert frozenset((corner[0].index, centre[0].index)) in ends
+    if kink >= 3e-5:
+        _check(face, mat)
+    else:
+        # the ray-depth oracle is ill-conditioned along a spoke that runs along a normal
+        # (the depth's deficit is second order: ~sqrt(eps) / kink); distances are not
+        fb = O.FaceBoundary(face)
+        pts, rad = mat.sample(20)
+        assert O.radius_error_2d(fb, pts, rad).max() <= 2 * mat.tol
+        assert np.nanmax(O.completeness_2d(fb, compound(mat), 120)) <= 2 * mat.tol

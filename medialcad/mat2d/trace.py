@@ -980,7 +980,8 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
             intervals, tables = _intervals(S, events, tr.L)
             twin = _twins(S, intervals, tables, tr.L)
         n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
-        kept = _thin(S, _dedupe(intervals, twin), 1e-2 * tol, 0.5 * tol)
+        intervals = _retarget_corner_ends(S, intervals, events, max(tol, 10 * settings.eps_s))
+        kept = _thin(S, _dedupe(S, intervals, twin, tol), 1e-2 * tol, 0.5 * tol)
         added = _missing_fit(tr, S, kept, tol) + _fill_empty(tr, kept)
         if not added:
             return _assemble(tr, frame, tol, S, events, n_nodes, kept)
@@ -1031,8 +1032,50 @@ def _unresolved_corners(intervals: list[_Interval], twin: IntArray) -> list[_Eve
     return out
 
 
-def _dedupe(intervals: list[_Interval], twin: IntArray) -> list[_Interval]:
-    """Keep one of the two sides of every branch (the interval with the lower index)."""
+def _retarget_corner_ends(
+    S: MapSamples, intervals: list[_Interval], events: list[_Event], radius: float
+) -> list[_Interval]:
+    """An interval that ends at a convex corner while its end sample's disk is large and
+    its centre sits on another node ends at that node. Next to a nearly flat convex
+    corner (1e-5 rad, a fillet meeting a line off tangent) the spoke's feet lie closer to
+    the corner than any sample, so the event where the branch meets the spoke is not
+    found and the branch was drawn on to the corner, 0.5 diag through the face."""
+    if not intervals or not events:
+        return intervals
+    node_of: dict[int, _Event] = {}
+    for e in events:
+        if e.kind is not NodeKind.CONVEX_VERTEX:
+            node_of.setdefault(e.node, e)
+    if not node_of:
+        return intervals
+    ids = list(node_of)
+    tree = cKDTree(np.array([node_of[k].point for k in ids]))
+    c = S.centre
+
+    def better(ev: _Event | None, smp: int) -> _Event | None:
+        if ev is None or ev.kind is not NodeKind.CONVEX_VERTEX:
+            return ev
+        if np.linalg.norm(c[smp] - ev.point) <= 10 * radius or S.radius[smp] <= 10 * radius:
+            return ev
+        d, k = tree.query(c[smp])
+        return node_of[ids[int(k)]] if d <= radius else ev
+
+    out = []
+    for iv in intervals:
+        if len(iv.samples):
+            start, end = better(iv.start, iv.samples[0]), better(iv.end, iv.samples[-1])
+            if start is not iv.start or end is not iv.end:
+                iv = dataclasses.replace(iv, start=start, end=end)
+        out.append(iv)
+    return out
+
+
+def _dedupe(
+    S: MapSamples, intervals: list[_Interval], twin: IntArray, tol: float
+) -> list[_Interval]:
+    """Keep one of the two sides of every branch (the interval with the lower index, or
+    the side whose end events sit where its end samples' centres lead: see
+    :func:`_end_miss`)."""
     by_nodes: dict[tuple[int, int], list[int]] = {}
     for k, other in enumerate(intervals):
         if other.start is not None and other.end is not None:
@@ -1046,9 +1089,38 @@ def _dedupe(intervals: list[_Interval], twin: IntArray) -> list[_Interval]:
                 kept.append(iv)
             continue
         j = twin[i]
-        if j < 0 or j == i or i < j:
+        if j < 0 or j == i:
+            kept.append(iv)
+            continue
+        lower = i < j
+        if twin[j] == i and len(intervals[j].samples) and _nodes(iv) != _nodes(intervals[j])[::-1]:
+            # the two sides disagree on the branch's nodes: one of them missed an event
+            # (a nearly flat convex corner whose spoke's feet lie closer to it than the
+            # samples: the side along the corner ended at the corner, 0.5 off its samples)
+            mi, mj = _end_miss(S, iv), _end_miss(S, intervals[j])
+            if max(mi, mj) > 10 * tol + 4 * min(mi, mj):
+                lower = mi < mj
+        if lower:
             kept.append(iv)
     return kept
+
+
+def _nodes(iv: _Interval) -> tuple[int | None, int | None]:
+    return (
+        iv.start.node if iv.start is not None else None,
+        iv.end.node if iv.end is not None else None,
+    )
+
+
+def _end_miss(S: MapSamples, iv: _Interval) -> float:
+    """How far the interval's end events lie from the centres of its end samples."""
+    c = S.centre
+    miss = 0.0
+    if iv.start is not None:
+        miss = max(miss, float(np.linalg.norm(c[iv.samples[0]] - iv.start.point)))
+    if iv.end is not None:
+        miss = max(miss, float(np.linalg.norm(c[iv.samples[-1]] - iv.end.point)))
+    return miss
 
 
 def _lower_side(
