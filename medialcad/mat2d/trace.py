@@ -316,7 +316,7 @@ class _Tracer:
         return self.sp_cache[key]
 
     def _sp_node_solve(
-        self, loop: int, s0: float, s1: float
+        self, loop: int, s0: float, s1: float, retry: bool = True
     ) -> tuple[FloatArray, float, FloatArray, int, float]:
         length = self.L[loop]
         a, b = s0, s0 + (s1 - s0) % length
@@ -352,6 +352,17 @@ class _Tracer:
         if side and not constant:
             best = self._march_max(loop, best, side, lo, hi, stop)
         p, n, k, ei, t, _ = best
+        if k <= 0 and retry and e.piece is not None and e.length < length:
+            # a bracket at a joint (a nearly smooth one whose tangents differ by the joint's
+            # gap, a convex corner of 1e-6 rad between a line and a fillet) can take the
+            # element on the wrong side: the maximum is on the one across the joint
+            eps = 1e-9 * self.cfg.spacing
+            if a <= e.s0 + eps:
+                x = (e.s0 - eps) % length
+                return self._sp_node_solve(loop, x, x, retry=False)
+            if b >= e.s0 + e.length - eps:
+                x = (e.s0 + e.length + eps) % length
+                return self._sp_node_solve(loop, x, x, retry=False)
         if k <= 0:
             raise ComputationError("self-partner point on a non-convex boundary stretch")
         return p + n / k, 1.0 / k, p, ei, t
@@ -984,9 +995,44 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
         kept = _thin(S, _dedupe(S, intervals, twin, tol), 1e-2 * tol, 0.5 * tol)
         added = _missing_fit(tr, S, kept, tol) + _fill_empty(tr, kept)
         if not added:
-            return _assemble(tr, frame, tol, S, events, n_nodes, kept)
+            graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
+            _check_topology(graph, len(tr.L))
+            return graph
         S = MapSamples.concat([S, *added])
     raise ComputationError("the medial axis did not reach the tolerance")
+
+
+def _check_topology(graph: MedialGraph, loops: int) -> None:
+    """The medial axis of a face is homotopy equivalent to it: connected, with one
+    independent cycle per hole. A graph that is not was traced wrong somewhere (seen at
+    nearly flat convex corners at both ends of a fillet, below the sample spacing): an
+    error, not a wrong answer."""
+    n = len(graph.nodes)
+    parent = list(range(n))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    components, cycles = n, 0
+    for b in graph.branches:
+        if b.start is None or b.end is None:  # a closed loop of its own
+            components += 1
+            cycles += 1
+            continue
+        a, c = find(b.start), find(b.end)
+        if a == c:
+            cycles += 1
+        else:
+            parent[a] = c
+            components -= 1
+    if (components, cycles) != (1, loops - 1):
+        raise ComputationError(
+            f"the medial graph has {components} components and {cycles} cycles, not 1 and "
+            f"{loops - 1}: it was traced wrong (nearly flat corners below the sample spacing?)"
+        )
 
 
 def _twins(
