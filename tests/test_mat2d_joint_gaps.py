@@ -139,6 +139,20 @@ def test_vertex_and_curve_samples_see_no_disk_through_the_gap() -> None:
         np.testing.assert_allclose(r, radii[0], rtol=1e-5)
 
 
+def _kinked_fillet(start: float, end: float) -> Any:
+    """A 3 x 2 plate whose top right corner is a fillet of radius 0.5; the right edge
+    meets the fillet at a convex corner of ``start`` rad, the top line at ``end`` rad."""
+    w, h = -1.5 * np.tan(start), -2.5 * np.tan(end)
+    edges = [
+        _segment((0, 0), (3 + w, 0)),
+        _segment((3 + w, 0), (3, 1.5)),
+        _arc_about((2.5, 1.5), 0.5, 0.0, np.pi / 2),
+        _segment((2.5, 2), (0, 2 + h)),
+        _segment((0, 2 + h), (0, 0)),
+    ]
+    return _face(edges, 0.0)
+
+
 @pytest.mark.parametrize("kink", [1e-5, 1e-4])
 def test_nearly_flat_convex_corner_beside_a_fillet_gives_a_tree(kink: float) -> None:
     """A plate with a fillet of radius 0.5 whose end meets the top line at a convex
@@ -146,15 +160,7 @@ def test_nearly_flat_convex_corner_beside_a_fillet_gives_a_tree(kink: float) -> 
     corner's spoke runs from the vertex to the fillet's centre); an event of that spoke
     merged into the fillet's centre node and left a loop there (a cycle in a simply
     connected face)."""
-    h = -2.5 * np.tan(kink)
-    edges = [
-        _segment((0, 0), (3, 0)),
-        _segment((3, 0), (3, 1.5)),
-        _arc_about((2.5, 1.5), 0.5, 0.0, np.pi / 2),
-        _segment((2.5, 2), (0, 2 + h)),
-        _segment((0, 2 + h), (0, 0)),
-    ]
-    face = _face(edges, 0.0)
+    face = _kinked_fillet(0.0, kink)
     mat = medialcad.medial_axis_2d(face)
     assert cycle_rank(mat) == (1, 0)
     assert all(b.start != b.end for b in mat.branches)
@@ -183,16 +189,7 @@ def test_nearly_flat_convex_corner_at_a_fillets_start_ends_its_branch_at_the_cen
     than any sample: the branch between the right edge and the top line lost its event at
     the centre and was drawn on to the corner, through the face (0.2 diag unsound at kink
     1e-5). It ends at the fillet's centre; the spoke joins the corner to it."""
-    w = -1.5 * np.tan(kink)
-    h = -2.5 * np.tan(kink) if both else 0.0
-    edges = [
-        _segment((0, 0), (3 + w, 0)),
-        _segment((3 + w, 0), (3, 1.5)),
-        _arc_about((2.5, 1.5), 0.5, 0.0, np.pi / 2),
-        _segment((2.5, 2), (0, 2 + h)),
-        _segment((0, 2 + h), (0, 0)),
-    ]
-    face = _face(edges, 0.0)
+    face = _kinked_fillet(kink, kink if both else 0.0)
     mat = medialcad.medial_axis_2d(face)
     assert cycle_rank(mat) == (1, 0)
     centre = [n for n in mat.nodes if np.linalg.norm(n.point[:2] - [2.5, 1.5]) <= mat.tol]

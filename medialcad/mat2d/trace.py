@@ -851,15 +851,20 @@ def _covering(
     return np.asarray(row[ok])
 
 
+def _find(parent: list[int], i: int) -> int:
+    """The root of ``i`` in a union-find forest (path halving)."""
+    while parent[i] != i:
+        parent[i] = parent[parent[i]]
+        i = parent[i]
+    return i
+
+
 def _merge_nodes(events: list[_Event], radius: float) -> int:
     pts = np.array([e.point for e in events]) if events else np.zeros((0, 2))
     parent = list(range(len(events)))
 
     def find(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
+        return _find(parent, i)
 
     if len(events) > 1:
         for i, j in cKDTree(pts).query_pairs(radius):
@@ -1009,20 +1014,13 @@ def _check_topology(graph: MedialGraph, loops: int) -> None:
     error, not a wrong answer."""
     n = len(graph.nodes)
     parent = list(range(n))
-
-    def find(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
     components, cycles = n, 0
     for b in graph.branches:
         if b.start is None or b.end is None:  # a closed loop of its own
             components += 1
             cycles += 1
             continue
-        a, c = find(b.start), find(b.end)
+        a, c = _find(parent, b.start), _find(parent, b.end)
         if a == c:
             cycles += 1
         else:
