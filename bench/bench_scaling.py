@@ -133,10 +133,19 @@ def main() -> None:
         )
     md = "\n".join(lines)
     print(md)
-    Path(args.out).write_text(
+    out = Path(args.out)
+    notes = _notes_after_table(out.read_text()) if out.exists() else ""
+    out.write_text(
         "# Scaling (bench/bench_scaling.py)\n\nTime of the MAT computation only; growth "
-        "exponent = log(t2/t1)/log(n2/n1) between consecutive sizes.\n\n" + md + "\n"
+        "exponent = log(t2/t1)/log(n2/n1) between consecutive sizes.\n\n" + md + "\n" + notes
     )
+
+
+def _notes_after_table(text: str) -> str:
+    """The hand-written notes below the table of an earlier results file, kept on rewrite."""
+    lines = text.splitlines(keepends=True)
+    rows = [i for i, line in enumerate(lines) if line.startswith("|")]
+    return "".join(lines[rows[-1] + 1 :]) if rows else ""
 
 
 if __name__ == "__main__":

@@ -477,14 +477,18 @@ def _convert_solids(
                 }
             _write_json(staging.path(Path(radius_path)), data, indent=1)
         if pictures.png is not None or pictures.html is not None:
-            from medialcad.plot3d import render_png, tessellate
+            from medialcad.plot3d import PNG_MAX_TRIANGLES, render_png, tessellate
             from medialcad.viewer import HTML_MAX_TRIANGLES, write_html
 
-            if pictures.png is not None:
-                render_png(mats[0], staging.path(Path(pictures.png)))
+            scene = None
             if pictures.html is not None:
                 scene = tessellate(mats[0], max_triangles=HTML_MAX_TRIANGLES)
                 write_html(mats[0], staging.path(Path(pictures.html)), scene=scene)
+            if pictures.png is not None:
+                # the viewer's mesh serves the picture too when it is within the picture's
+                # budget (matplotlib slows with triangles); otherwise a coarser one is made
+                small = scene is not None and scene.triangle_count() <= PNG_MAX_TRIANGLES
+                render_png(mats[0], staging.path(Path(pictures.png)), scene=scene if small else None)
         if report_path is not None:
             _write_json(staging.path(Path(report_path)), report)
         written = staging.commit()

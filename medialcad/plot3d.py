@@ -91,6 +91,10 @@ class Scene:
     decimated: bool = False
     counts: dict[str, int] = field(default_factory=dict)
 
+    def triangle_count(self) -> int:
+        """Triangles of the solid and the sheets (what the picture budgets count)."""
+        return len(self.solid.triangles) + len(self.sheets.triangles)
+
 
 # --------------------------------------------------------------------------- meshing
 def _xyz(p: Any) -> tuple[float, float, float]:

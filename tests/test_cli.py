@@ -351,3 +351,26 @@ def test_a_refused_solid_writes_no_viewer(tmp_path: Path) -> None:
     )
     assert proc.returncode == 2
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(("name", "meshes"), [("housing_bracket.step", 1), ("gear_wheel.step", 2)])
+def test_png_and_html_share_one_mesh_when_it_fits_the_picture(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, name: str, meshes: int
+) -> None:
+    import medialcad.plot3d as plot3d
+
+    budgets: list[int] = []
+    real = plot3d.tessellate
+
+    def counting(*args: object, max_triangles: int = 200_000, **kw: object) -> plot3d.Scene:
+        budgets.append(max_triangles)
+        return real(*args, max_triangles=max_triangles, **kw)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(plot3d, "tessellate", counting)
+    png, page = tmp_path / "p.png", tmp_path / "v.html"
+    args = [str(SOLIDS / name), "-o", str(tmp_path / "o.step"), "--png", str(png)]
+    assert main([*args, "--html", str(page), "--no-thickness"]) == 0
+    assert png.stat().st_size > 10_000 and page.stat().st_size > 10_000
+    # the bracket's viewer mesh is small enough for the picture; the gear's is not
+    assert len(budgets) == meshes
+    assert budgets[-1] == (plot3d.PNG_MAX_TRIANGLES if meshes == 2 else budgets[0])
