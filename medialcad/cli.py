@@ -488,7 +488,9 @@ def _convert_solids(
                 # the viewer's mesh serves the picture too when it is within the picture's
                 # budget (matplotlib slows with triangles); otherwise a coarser one is made
                 small = scene is not None and scene.triangle_count() <= PNG_MAX_TRIANGLES
-                render_png(mats[0], staging.path(Path(pictures.png)), scene=scene if small else None)
+                render_png(
+                    mats[0], staging.path(Path(pictures.png)), scene=scene if small else None
+                )
         if report_path is not None:
             _write_json(staging.path(Path(report_path)), report)
         written = staging.commit()

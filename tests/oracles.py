@@ -18,6 +18,7 @@ All errors are absolute (model units); divide by :func:`bbox_diagonal` to report
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from typing import Any
@@ -656,6 +657,67 @@ class FaceBoundary:
 
         return _local_min(f, a, b)
 
+    def local_bisector_distance(self, p: FloatArray, i: int, t: float) -> float:
+        """Distance from ``p`` to the true medial points touching two of the edges near
+        it (edge ``i``, its foot's, near ``t``, among them): the point where the distances
+        to the two edges agree, by Newton on their difference from ``p``. At a nearly flat convex
+        corner (turn ``a``) the ray depth cannot resolve the spoke: along it the distances
+        to the two sides differ by ``(1 - cos a) s``, below rounding for ``a`` ~ 1e-5,
+        while their gradients differ by ``a``: the difference's root is resolved to
+        rounding / ``a``. ``inf`` when no such medial point exists near ``p``."""
+        best = math.inf
+        inf = math.inf
+        # every pair of the edges near p: its foot's own, or two others (a foot on a tiny
+        # fillet rounding the corner: the spoke beyond its centre is the sides' bisector)
+        cands = [(i, t), *self._second_edges(p, i)]
+        for (i, t), (j, tj) in itertools.combinations(cands, 2):
+            c, ti = np.asarray(p, dtype=float).copy(), t
+            # the feet may leave the edges while Newton runs (``p`` off the spoke has
+            # its foot beyond the corner on one side): project onto the curves' extensions
+            for _ in range(60):
+                di, qi, ti = self._project_local(c, i, ti, -inf, inf)
+                dj, qj, tj = self._project_local(c, j, tj, -inf, inf)
+                if di <= 0 or dj <= 0:
+                    break
+                g = (c - qi) / di - (c - qj) / dj
+                gg = float(g @ g)
+                if gg <= 1e-30:
+                    break
+                step = (di - dj) * g / gg
+                c = c - step
+                # (the root is resolved to rounding / |g| only: steps of that size dither)
+                if float(np.linalg.norm(step)) <= self.eps + 1e-12 * self.diag / math.sqrt(gg):
+                    break
+            di, _, ti = self._project_local(c, i, ti, -inf, inf)
+            dj, _, tj = self._project_local(c, j, tj, -inf, inf)
+            # a tangent contact inside each edge, and the disk empty
+            if not (self._inside_range(i, ti) and self._inside_range(j, tj)):
+                continue
+            if abs(di - dj) > self.eta or self.nearest(c)[0] < di - self.eta:
+                continue
+            best = min(best, float(np.linalg.norm(np.asarray(p) - c)))
+        return best
+
+    def _inside_range(self, i: int, t: float) -> bool:
+        c = self.curves[i]
+        return c.FirstParameter() < t < c.LastParameter() and self.end_vertex(i, t) is None
+
+    def _second_edges(self, p: FloatArray, i: int) -> list[tuple[int, float]]:
+        """``(edge, parameter of its sample nearest p)`` of the edges other than ``i`` that
+        come within 1.5 times ``p``'s distance to the boundary."""
+        x = np.asarray(p, dtype=float)
+        dist = np.linalg.norm(self._spts - x, axis=1)
+        d = float(dist.min())
+        out = []
+        for j in range(len(self.edges)):
+            if j == i:
+                continue
+            sel = np.flatnonzero(self._sedge == j)
+            k = sel[int(np.argmin(dist[sel]))]
+            if dist[k] <= 1.5 * d + self._sh:
+                out.append((j, float(self._spar[k])))
+        return out
+
     def local_medial_distance_at_vertex(
         self, p: FloatArray, v: FloatArray, u: FloatArray, window: float
     ) -> float:
@@ -759,6 +821,8 @@ def soundness_2d(face: Any, points3d: ArrayLike, tol: float, refine: bool = True
             window = 4.0 * math.sqrt(e * fb.diag) + 4.0 * e
             if foot is not None:
                 e = min(e, fb.local_medial_distance(p, foot[0], foot[1], window))
+                if e > 0.5 * tol:  # next to a nearly flat corner: the bisector
+                    e = min(e, fb.local_bisector_distance(p, foot[0], foot[1]))
             elif vertex is not None:  # a reflex vertex
                 e = min(e, fb.local_medial_distance_at_vertex(p, q, u, min(window / d, 0.5)))
         errs[k] = e

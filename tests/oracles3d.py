@@ -30,6 +30,7 @@ All errors are absolute (model units); divide by ``SolidBoundary.diag`` to repor
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from typing import Any
@@ -695,6 +696,81 @@ class SolidBoundary:
         hu, hv = 0.25 * window / su, 0.25 * window / sv
         return _local_min_2d(f, hu, hv, 1e-9 * max(hu, hv), 1e-3 * self.eps)
 
+    def local_bisector_distance(self, p: FloatArray, face: int, uv: ArrayLike) -> float:
+        """Distance from ``p`` to the true medial points touching two of the faces near it
+        (``face``, its foot's, near ``uv``, among them): the point where the distances to the two surfaces agree,
+        by Newton on their difference from ``p`` (projections on the untrimmed surfaces,
+        feet checked inside their faces, ball checked empty). Where the two contacts' normals
+        differ by a small angle ``a`` (the spoke of a nearly flat corner or of a tiny fillet
+        rounding one, revolved or extruded) the ray depth cannot resolve the sheet: along
+        the ray the distances to the two sides differ by ``(1 - cos a) s``, below rounding
+        for ``a`` ~ 1e-4; their gradients differ by ``a``, so the root is resolved to
+        rounding / ``a``. ``inf`` when no such medial point is found."""
+        x0 = np.asarray(p, dtype=float)
+        d0, _ = self.nearest(x0)
+        # candidate second faces: a surface whose distance from p is within d0 / 2 of d0
+        lb = np.linalg.norm(
+            np.maximum(0.0, np.maximum(self._fbox[:, 0] - x0, x0 - self._fbox[:, 1])), axis=1
+        )
+        cands = [(face, gp_Pnt2d(float(uv[0]), float(uv[1])))]
+        for j in np.nonzero(lb <= 1.5 * d0)[0]:
+            j = int(j)
+            if j == face:
+                continue
+            uvj = self._sas[j].ValueOfUV(_pnt(x0), 1e-12 * self.diag)
+            dj0 = float(np.linalg.norm(_xyz(self._surf[j].Value(uvj.X(), uvj.Y())) - x0))
+            if dj0 <= 1.5 * d0:
+                cands.append((j, uvj))
+        # every pair of the faces near p: its foot's own, or two others (a foot on a tiny
+        # fillet rounding the corner: the sheet beyond its centre is the sides' bisector)
+        best = math.inf
+        for (i, uvi), (j, uvj) in itertools.combinations(cands, 2):
+            got = self._bisector_point(x0, i, uvi, j, uvj)
+            if got is not None:
+                best = min(best, float(np.linalg.norm(x0 - got)))
+        return best
+
+    def _bisector_point(
+        self, x0: FloatArray, i: int, uvi: Any, j: int, uvj: Any
+    ) -> FloatArray | None:
+        """The point equidistant from faces ``i`` and ``j`` reached from ``x0`` by Newton
+        (``uvi``, ``uvj``: ``gp_Pnt2d`` starting feet), if it is a medial point (both feet
+        inside their faces, the ball empty)."""
+        pi, pj = uvi, uvj
+        c = x0.copy()
+
+        def foot(k: int, prev: Any, x: FloatArray) -> tuple[Any, FloatArray]:
+            q2 = self._sas[k].NextValueOfUV(prev, _pnt(x), 1e-12 * self.diag)
+            return q2, _xyz(self._surf[k].Value(q2.X(), q2.Y()))
+
+        for _ in range(60):
+            pi, qi = foot(i, pi, c)
+            pj, qj = foot(j, pj, c)
+            di, dj = float(np.linalg.norm(c - qi)), float(np.linalg.norm(c - qj))
+            if di <= 0 or dj <= 0:
+                return None
+            g = (c - qi) / di - (c - qj) / dj
+            gg = float(g @ g)
+            if gg <= 1e-30:
+                return None
+            step = (di - dj) * g / gg
+            c = c - step
+            # (the root is resolved to rounding / |g| only: steps of that size dither)
+            if float(np.linalg.norm(step)) <= self.eps + 1e-12 * self.diag / math.sqrt(gg):
+                break
+        pi, qi = foot(i, pi, c)
+        pj, qj = foot(j, pj, c)
+        di, dj = float(np.linalg.norm(c - qi)), float(np.linalg.norm(c - qj))
+        if abs(di - dj) > self.eta:
+            return None
+        for k, q2 in ((i, pi), (j, pj)):
+            self._face_classifier.Perform(self.faces[k], q2, 1e-9)
+            if self._face_classifier.State() != TopAbs_IN:
+                return None
+        if self.nearest(c)[0] < di - self.eta:
+            return None
+        return c
+
     def local_medial_distance_at_edge(
         self, p: FloatArray, q: FloatArray, window: float
     ) -> float | None:
@@ -975,6 +1051,8 @@ def soundness(
             window = 4.0 * math.sqrt(e * sb.diag) + 4.0 * e
             if face is not None and uv is not None:
                 errs[k] = min(e, sb.local_medial_distance(pts[k], int(face), uv, window))
+                if errs[k] > refine_above:  # a spoke between nearly parallel contacts
+                    errs[k] = min(errs[k], sb.local_bisector_distance(pts[k], int(face), uv))
             else:  # a foot on an edge (a reflex edge)
                 got = sb.local_medial_distance_at_edge(pts[k], q, window)
                 if got is not None:

@@ -143,6 +143,43 @@ def test_random_line_arc_fillet_mix(face: Any, seed: int) -> None:
     )
 
 
+def test_weak_curvature_maximum_beside_a_second_contact_has_its_branch() -> None:
+    """A fresh random blob (2026-12-02, kept exactly as binary BREP) with a flat curvature
+    maximum (k = 2.2003, 2.1956 a hundredth away) whose osculating disk is empty: its
+    centre ends a branch only ~8 tol long, fed by a boundary stretch 0.0021 wide around
+    the maximum, a fifth of the sample spacing; the samples beside it all had their
+    partners far away, so the branch went unseen (completeness 7.6 tol). Every empty
+    osculating disk at a curvature maximum is an end point, and the oracles pass."""
+    from OCP.BinTools import BinTools
+    from OCP.TopoDS import TopoDS_Shape
+    from scipy.optimize import minimize_scalar
+
+    shape = TopoDS_Shape()
+    BinTools.Read_s(
+        shape, str(Path(__file__).parent / "data" / "blob_weak_curvature_maximum.bbrep")
+    )
+    face = TopoDS.Face_s(shape)
+    res = compute(face)
+    fb = O.FaceBoundary(face)
+    ends = np.array([n.point for n in res.nodes if n.kind.value == "curvature_centre"])
+    for i, c in enumerate(fb.curves):
+        t = np.linspace(c.FirstParameter(), c.LastParameter(), 4001)
+        rho = np.array([fb.curvature_radius(i, tt) for tt in t])
+        for j in np.nonzero((rho[1:-1] < rho[:-2]) & (rho[1:-1] <= rho[2:]))[0] + 1:
+            opt = minimize_scalar(
+                lambda x, i=i: fb.curvature_radius(i, x),
+                bounds=(t[j - 1], t[j + 1]),
+                method="bounded",
+                options={"xatol": 1e-12},
+            )
+            b, n = fb.inward_normal(i, float(opt.x))
+            centre = b + opt.fun * n
+            if fb.nearest(centre)[0] >= opt.fun - 1e-3 * res.tol:  # empty osculating disk
+                gap = np.linalg.norm(ends - centre, axis=1).min()
+                assert gap <= res.tol, f"no end point at the curvature centre {centre}"
+    check_with_oracles(face, "weak curvature maximum", n_boundary=80, per_branch=12)
+
+
 def test_fuzzed_blob_has_no_stray_curvature_centre() -> None:
     """A blob of the 2026-12-01 fuzz run (two equal radii; placed by seed 0): a spurious
     curvature-centre event 0.006 diag off the axis, next to a branch point, became a node

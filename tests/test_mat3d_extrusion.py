@@ -512,8 +512,14 @@ HYPO3 = settings(
 )
 
 
-def _random_extrusion(face: Any, factor: float, seed: int, label: str) -> None:
+def _random_extrusion(
+    face: Any, factor: float, seed: int, label: str, length: float | None = None
+) -> None:
+    """``face`` extruded by ``factor`` times its diagonal (or by ``length``), placed
+    randomly, judged by the oracles."""
     diag = O.bbox_diagonal(face)
+    if length is not None:
+        factor = length / diag
     solid = M.prism(face, factor * diag, F.random_placement(seed))
     with F.dump_on_failure(solid, f"{label}-extrusion-seed{seed}"):
         t0 = time.perf_counter()
@@ -554,3 +560,54 @@ def test_random_polygon_with_holes_extrusion(face: Any, factor: float, seed: int
 @given(face=F.line_arc_fillet_mix(), factor=_LENGTH, seed=_SEED)
 def test_random_line_arc_extrusion(face: Any, factor: float, seed: int) -> None:
     _random_extrusion(face, factor, seed, "fillets")
+
+
+@st.composite
+def _at_a_critical_length(draw: st.DrawFn) -> tuple[Any, float]:
+    """A random profile and a length on a degenerate boundary of the thin extrusion
+    (THEORY Sec. 1: the mid sheet is where ``r > L / 2``): ``L = 2 Rmax`` (the mid sheet
+    shrinks to the largest disks' centres) or ``L = 2 r`` of a branch point (its boundary
+    runs through the branch point)."""
+    from medialcad.api import medial_axis_2d
+
+    face = draw(
+        st.one_of(
+            F.star_polygon_strategy(),
+            F.polygon_with_holes_strategy(),
+            F.line_arc_fillet_mix(),
+            F.random_bspline_blob(),
+        )
+    )
+    mat = medial_axis_2d(face)  # only to choose the length: the oracles judge the result
+    radii = [mat.rmax] + [n.radius for n in mat.branch_points]
+    return face, 2.0 * draw(st.sampled_from(radii))
+
+
+@HYPO3
+@given(case=_at_a_critical_length(), seed=_SEED)
+def test_random_extrusion_at_a_critical_length(case: tuple[Any, float], seed: int) -> None:
+    face, length = case
+    _random_extrusion(face, 0.0, seed, "critical", length=length)
+
+
+def test_rmax_within_the_tolerance_above_half_the_length() -> None:
+    """A fresh random extrusion (2026-12-02, kept exactly as binary BREP) of length
+    ``L = 2 r`` for a branch point of radius r, next to another branch point 1.6e-5
+    (0.5 tol) larger: Rmax is within the tolerance above L/2, so there is no mid sheet,
+    and the larger disk still touches both caps. Its seam ran from z = r down to
+    z = L - r, carrying r where the distance is L - r (1.01 tol). Every sample carries its
+    distance to the boundary, and no radius exceeds L/2."""
+    from OCP.BinTools import BinTools
+    from OCP.TopoDS import TopoDS_Shape
+
+    shape = TopoDS_Shape()
+    path = Path(__file__).parent / "data" / "extrusion_rmax_just_above_half_length.bbrep"
+    BinTools.Read_s(shape, str(path))
+    result = M.extrusion_mat(shape)
+    half = 0.5 * result.recognition.length
+    assert 0 < result.mat2d.rmax - half < result.tol  # the case: no mid sheet
+    assert not [s for s in result.sheets if s.role == "mid"]
+    assert max(j.radius for j in result.junctions) <= half * (1 + 1e-12)
+    rep = M.check(shape, result, "Rmax just above L/2", per_face=10, n_complete=60)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())

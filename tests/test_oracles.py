@@ -54,6 +54,33 @@ def test_rectangle_soundness_on_and_off_axis(pl: F.Placement) -> None:
 
 
 @pytest.mark.parametrize("pl", PLACEMENTS)
+@pytest.mark.parametrize("turn", [5.8e-6, 1e-3])
+@pytest.mark.parametrize("rf", [0.0, 0.2])
+def test_soundness_on_the_spoke_of_a_nearly_flat_corner(
+    pl: F.Placement, turn: float, rf: float
+) -> None:
+    """The spoke of a convex corner turning by ``turn`` (sharp, or rounded by a tiny
+    fillet of radius ``rf``: the spoke then starts at its centre) is the corner's
+    bisector. Along it the distances to the two sides differ by ``(1 - cos turn) s``:
+    below rounding far from the origin at 5.8e-6 (a fresh random star read 64 tol
+    unsound on its exact spoke, a revolved tiny fillet 6.6 tol). On the spoke the error
+    is below half the tolerance, a step of ``delta`` off it reads ``delta``."""
+    v = np.array([0.0, 1.0])
+    d0 = np.array([math.cos(turn / 2), -math.sin(turn / 2)])  # from v along the right side
+    d1 = np.array([-math.cos(turn / 2), -math.sin(turn / 2)])
+    outline = [v, v + 1.2 * d0, np.array([0.4, -1.0]), np.array([-0.5, -1.0]), v + 1.1 * d1]
+    face = F.filleted_polygon(outline, [rf, 0, 0, 0, 0]) if rf else F.polygon(outline)
+    fb = O.FaceBoundary(F.place(face, pl))
+    tol = 1e-5 * fb.diag
+    s = np.linspace(max(0.02, 1.1 * rf), 0.4, 15)  # the bisector points straight down from v
+    on = np.c_[0 * s, 1.0 - s]
+    assert O.soundness_2d(fb, pl.to_model(on), tol).max() < 0.5 * tol
+    for delta in (3 * tol, 30 * tol):
+        err = O.soundness_2d(fb, pl.to_model(on + np.array([delta, 0.0])), tol)
+        assert np.all(err > 0.5 * delta) and np.all(err < 1.5 * delta)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
 def test_soundness_special_points(pl: F.Placement) -> None:
     fb = O.FaceBoundary(F.place(F.rectangle(2.0, 1.0), pl))
     tol = 1e-5 * fb.diag

@@ -96,6 +96,11 @@ def extrusion_rows(
         r = s.radius
         high = high_level is not None and float(np.median(r)) > high_level
         if not high:
+            # without a mid sheet (Rmax within the tolerance above L/2) a disk wider than
+            # L/2 still touches both caps: its centre is at z = L/2 with radius L/2 (the
+            # seams ``(c, r)``, ``(c, L - r)`` would cross, carrying r where the distance
+            # is ``L - r``: 1.01 tol at a fresh random L = 2 r of a branch point)
+            r = np.minimum(r, 0.5 * L)
             t, k, (cc, fa, fb) = interp_rows(
                 s.w, np.column_stack([s.centre, r]), s.foot_a, s.foot_b
             )
