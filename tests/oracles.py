@@ -619,6 +619,39 @@ class FaceBoundary:
                 pts.append(b), nrms.append(nrm), where.append((i, t))
         return np.array(pts), np.array(nrms), where
 
+    def sharp_tips(self, max_radius: float) -> FloatArray:
+        """``(N, 3)`` centres of curvature of the convex curvature maxima whose radius is at
+        most ``max_radius``: tips so sharp that their end point lies within that distance
+        of the boundary (at the tolerance they are corners). Each maximum is bracketed on
+        the dense samples and refined by a bounded scalar search."""
+        if not hasattr(self, "_tips"):
+            tips: list[tuple[float, FloatArray]] = []
+            for i, c in enumerate(self.curves):
+                if c.GetType() == GeomAbs_Line:
+                    continue
+                ts = self._spar[self._sedge == i]
+                if c.GetType() == GeomAbs_Circle:  # one centre (an arc: every point a maximum)
+                    t = float(ts[len(ts) // 2])
+                    rho_c = self.curvature_radius(i, t)
+                    if np.isfinite(rho_c):
+                        b, n = self.inward_normal(i, t)
+                        tips.append((rho_c, b + rho_c * n))
+                    continue
+                rho = np.array([self.curvature_radius(i, float(t)) for t in ts])
+                for j in np.flatnonzero((rho[1:-1] <= rho[:-2]) & (rho[1:-1] <= rho[2:])) + 1:
+                    opt = minimize_scalar(
+                        lambda x, i=i: self.curvature_radius(i, x),
+                        bounds=(float(ts[j - 1]), float(ts[j + 1])),
+                        method="bounded",
+                        options={"xatol": 1e-14 * max(1.0, abs(float(ts[j])))},
+                    )
+                    if np.isfinite(opt.fun):
+                        b, n = self.inward_normal(i, float(opt.x))
+                        tips.append((float(opt.fun), b + float(opt.fun) * n))
+            self._tips = tips
+        out = [c for r, c in self._tips if r <= max_radius]
+        return np.array(out).reshape(-1, 3)
+
     def near_convex_corner(self, p: FloatArray, dist: float) -> bool:
         if len(self.convex_corners) == 0:
             return False
@@ -771,8 +804,9 @@ def soundness_2d(face: Any, points3d: ArrayLike, tol: float, refine: bool = True
     For a sample ``p``: ``q`` = nearest boundary point, ``u = (p - q)/|p - q|``, ``s*`` the medial
     depth of ``q`` along ``u``; the error is ``|s* - |p - q||`` (0 on the medial axis). A sample
     outside the face (or off its plane by more than ``tol``) is ``inf``. A sample within ``tol``
-    of the boundary is 0 if it is within ``tol`` of a convex corner (an ``r = 0`` end point),
-    else its distance to the nearest convex corner (or ``inf``).
+    of the boundary is 0 if it is within ``tol`` of a convex corner (an ``r = 0`` end point)
+    or of the centre of a tip sharper than ``2 tol`` (:meth:`FaceBoundary.sharp_tips`), else
+    its distance to the nearest of them (or ``inf``).
 
     The ray error magnifies a sample's offset ``delta`` across the axis by ``1/sin(theta)``
     (``theta``: angle between the ray and the axis), which blows up near curvature-centre end
@@ -794,10 +828,12 @@ def soundness_2d(face: Any, points3d: ArrayLike, tol: float, refine: bool = True
             continue
         d, q = fb.nearest(p)
         if d <= tol:
-            if len(fb.convex_corners) == 0:
+            # r = 0 end points, and the ends at tips sharper than the tolerance
+            ends = np.vstack([fb.convex_corners, fb.sharp_tips(2.0 * tol)])
+            if len(ends) == 0:
                 errs[k] = np.inf
             else:
-                dc = float(np.linalg.norm(fb.convex_corners - p, axis=1).min())
+                dc = float(np.linalg.norm(ends - p, axis=1).min())
                 errs[k] = 0.0 if dc <= tol else dc
             continue
         if not fb.inside(p, clearance=d):

@@ -205,6 +205,25 @@ def test_branch_point_beside_a_flat_curvature_maximum_keeps_its_branches() -> No
     check_with_oracles(profile, "thin blob profile", n_boundary=400, per_branch=30)
 
 
+def test_tip_sharper_than_the_tolerance_ends_a_branch() -> None:
+    """A fresh random blob (2026-12-02, kept exactly as binary BREP) with a tip of radius
+    1.8e-5 (0.7 tol): the branch into it ends at the tip's centre, within the tolerance
+    of the boundary. The oracle took such a sample for a boundary point away from every
+    convex corner (unsound, inf); at the tolerance the tip is a corner."""
+    from OCP.BinTools import BinTools
+    from OCP.TopoDS import TopoDS_Shape
+
+    shape = TopoDS_Shape()
+    BinTools.Read_s(shape, str(Path(__file__).parent / "data" / "blob_sharp_tip.bbrep"))
+    face = TopoDS.Face_s(shape)
+    res = compute(face)
+    tips = O.FaceBoundary(face).sharp_tips(2 * res.tol)
+    assert len(tips) == 1
+    (end,) = [n for n in res.nodes if n.radius < 2 * res.tol]
+    assert np.linalg.norm(end.point - tips[0]) <= res.tol
+    check_with_oracles(face, "sharp tip", n_boundary=80, per_branch=12)
+
+
 def test_fuzzed_blob_has_no_stray_curvature_centre() -> None:
     """A blob of the 2026-12-01 fuzz run (two equal radii; placed by seed 0): a spurious
     curvature-centre event 0.006 diag off the axis, next to a branch point, became a node
