@@ -455,8 +455,10 @@ class FaceBoundary:
         boundary is convex (bends towards the interior); ``inf`` where it is not."""
         p, d1, d2 = gp_Pnt(), gp_Vec(), gp_Vec()
         self.curves[i].D2(t, p, d1, d2)
-        _, nrm = self.inward_normal(i, t)
         v1 = _xyz(d1)
+        if float(v1 @ v1) <= 1e-300:  # a stalled end (repeated pole): no curvature bound
+            return math.inf
+        _, nrm = self.inward_normal(i, t)
         k = float(_xyz(d2) @ nrm) / float(v1 @ v1)
         return 1.0 / k if k > 1e-12 / self.diag else math.inf
 
