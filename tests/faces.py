@@ -10,8 +10,10 @@ Nothing here imports medialcad.
 
 from __future__ import annotations
 
+import json
 import math
 import os
+import time
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -149,10 +151,18 @@ def dump_on_failure(
     shape: object, label: str, env: str = "MEDIALCAD_FAILED_SHAPES"
 ) -> Iterator[None]:
     """Write ``shape`` as BREP to the folder ``$env`` (if set) when the block raises, so a
-    fuzzing failure can be replayed outside hypothesis."""
+    fuzzing failure can be replayed outside hypothesis.
+
+    With ``$MEDIALCAD_FUZZ_LOG`` set (the long fuzzing run, ``scripts/fuzz.sh``) every
+    example is appended to that JSON-lines log as passed, refused (a medialcad
+    ``InputError``: a clear refusal is an allowed answer) or failed, and the exception is
+    swallowed, so hypothesis goes on drawing instead of stopping at the first failure."""
+    log = os.environ.get("MEDIALCAD_FUZZ_LOG")
+    t0 = time.perf_counter()
     try:
         yield
-    except BaseException:
+    except Exception as exc:
+        path = None
         dump = os.environ.get(env)
         if dump:
             Path(dump).mkdir(parents=True, exist_ok=True)
@@ -161,7 +171,37 @@ def dump_on_failure(
             # the text BREP rounds coordinates (to ~1e-15 relative); the binary one is exact
             BinTools.Write_s(shape, str(path.with_suffix(".bbrep")))
             print(f"failing shape written to {path} (exact copy: .bbrep)")
-        raise
+        if not log or type(exc).__module__.startswith("hypothesis"):
+            raise  # (hypothesis's own control flow, e.g. assume(), is not an outcome)
+        refused = any(c.__name__ == "InputError" for c in type(exc).__mro__)
+        _fuzz_record(log, label, "refused" if refused else "failed", t0, exc, path)
+    else:
+        if log:
+            _fuzz_record(log, label, "passed", t0)
+
+
+def _fuzz_record(
+    log: str,
+    label: str,
+    outcome: str,
+    t0: float,
+    exc: BaseException | None = None,
+    path: Path | None = None,
+) -> None:
+    """Append one example's outcome to the fuzzing log (one JSON object a line)."""
+    test = os.environ.get("PYTEST_CURRENT_TEST", "").split(" ")[0].split("::")[-1]
+    entry = {
+        "test": test,
+        "label": label,
+        "outcome": outcome,
+        "seconds": round(time.perf_counter() - t0, 3),
+        "error": None
+        if exc is None
+        else f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"[:400],
+        "shape": None if path is None else str(path.with_suffix(".bbrep")),
+    }
+    with open(log, "a", encoding="utf-8") as fh:
+        fh.write(json.dumps(entry) + "\n")
 
 
 def _face(outer: cq.Wire, inners: Sequence[cq.Wire] = ()) -> TopoDS_Face:
