@@ -29,13 +29,14 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepTools import BRepTools
 from OCP.gp import gp_Trsf
-from OCP.TopoDS import TopoDS, TopoDS_Face
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
 __all__ = [
     "IDENTITY",
     "TILTED_FAR",
     "Placement",
     "annulus",
+    "any_profile",
     "bspline_blob",
     "circle",
     "dump_on_failure",
@@ -52,6 +53,7 @@ __all__ = [
     "polygon_with_holes_strategy",
     "random_bspline_blob",
     "random_placement",
+    "read_exact",
     "rectangle",
     "regular_ngon",
     "rounded_rectangle",
@@ -144,6 +146,19 @@ def is_valid(face: TopoDS_Face) -> bool:
 
 
 # --------------------------------------------------------------------------- builders
+
+
+DATA = Path(__file__).resolve().parent / "data"
+
+
+def read_exact(name: str) -> TopoDS_Shape:
+    """A shape kept exactly (binary BREP, as :func:`dump_on_failure` writes it) under
+    ``tests/data/``: the text BREP's rounding of a placement once changed an answer."""
+    shape = TopoDS_Shape()
+    BinTools.Read_s(shape, str(DATA / name))
+    if shape.IsNull():
+        raise FileNotFoundError(DATA / name)
+    return shape
 
 
 @contextmanager
@@ -466,3 +481,14 @@ def line_arc_fillet_mix(draw: st.DrawFn) -> TopoDS_Face:
         raise
     assume(is_valid(face))
     return face
+
+
+def any_profile() -> st.SearchStrategy[TopoDS_Face]:
+    """A face from any of the four profile strategies (star polygons, polygons with
+    holes, line-arc-fillet mixes, B-spline blobs)."""
+    return st.one_of(
+        star_polygon_strategy(),
+        polygon_with_holes_strategy(),
+        line_arc_fillet_mix(),
+        random_bspline_blob(),
+    )

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -706,23 +706,22 @@ class FaceBoundary:
         # fillet rounding the corner: the spoke beyond its centre is the sides' bisector)
         cands = [(i, t), *self._second_edges(p, i)]
         for (i, t), (j, tj) in itertools.combinations(cands, 2):
-            c, ti = np.asarray(p, dtype=float).copy(), t
             # the feet may leave the edges while Newton runs (``p`` off the spoke has
             # its foot beyond the corner on one side): project onto the curves' extensions
-            for _ in range(60):
-                di, qi, ti = self._project_local(c, i, ti, -inf, inf)
-                dj, qj, tj = self._project_local(c, j, tj, -inf, inf)
-                if di <= 0 or dj <= 0:
-                    break
-                g = (c - qi) / di - (c - qj) / dj
-                gg = float(g @ g)
-                if gg <= 1e-30:
-                    break
-                step = (di - dj) * g / gg
-                c = c - step
-                # (the root is resolved to rounding / |g| only: steps of that size dither)
-                if float(np.linalg.norm(step)) <= self.eps + 1e-12 * self.diag / math.sqrt(gg):
-                    break
+            params = {i: t, j: tj}
+
+            def foot(x: FloatArray, k: int, params: dict[int, float] = params) -> FloatArray:
+                _, q, params[k] = self._project_local(x, k, params[k], -inf, inf)
+                return q
+
+            c, _ = equidistant_point(
+                np.asarray(p, dtype=float),
+                lambda x, i=i: foot(x, i),
+                lambda x, j=j: foot(x, j),
+                self.eps,
+                self.diag,
+            )
+            ti, tj = params[i], params[j]
             di, _, ti = self._project_local(c, i, ti, -inf, inf)
             dj, _, tj = self._project_local(c, j, tj, -inf, inf)
             # a tangent contact inside each edge, and the disk empty
@@ -770,6 +769,39 @@ class FaceBoundary:
             return float(np.linalg.norm(p - (v + self.medial_depth(v, w) * w)))
 
         return _local_min(f, -window, window)
+
+
+def equidistant_point(
+    x0: FloatArray,
+    foot_a: Callable[[FloatArray], FloatArray],
+    foot_b: Callable[[FloatArray], FloatArray],
+    eps: float,
+    diag: float,
+) -> tuple[FloatArray, bool]:
+    """The point where the distances to two curves or surfaces agree, by Newton on their
+    difference from ``x0`` (the bisector refinement of both soundness oracles: along a
+    spoke between nearly parallel contacts, turning by ``a``, the distances differ by
+    ``(1 - cos a) s``, below rounding, while their gradients differ by ``a``: the root is
+    resolved to rounding / ``a``). ``foot_a``, ``foot_b``: the nearest point of each
+    (warm-started by the caller). Returns the point and whether Newton stopped on a
+    degenerate step (a foot at the point, or parallel gradients) instead of converging;
+    the caller checks that the point is medial."""
+    c = np.asarray(x0, dtype=float).copy()
+    for _ in range(60):
+        qa, qb = foot_a(c), foot_b(c)
+        da, db = float(np.linalg.norm(c - qa)), float(np.linalg.norm(c - qb))
+        if da <= 0 or db <= 0:
+            return c, True
+        g = (c - qa) / da - (c - qb) / db
+        gg = float(g @ g)
+        if gg <= 1e-30:
+            return c, True
+        step = (da - db) * g / gg
+        c = c - step
+        # (the root is resolved to rounding / |g| only: steps of that size dither)
+        if float(np.linalg.norm(step)) <= eps + 1e-12 * diag / math.sqrt(gg):
+            break
+    return c, False
 
 
 def _local_min(f: Any, a: float, b: float) -> float:
@@ -859,6 +891,9 @@ def soundness_2d(face: Any, points3d: ArrayLike, tol: float, refine: bool = True
             window = 4.0 * math.sqrt(e * fb.diag) + 4.0 * e
             if foot is not None:
                 e = min(e, fb.local_medial_distance(p, foot[0], foot[1], window))
+                if e > 0.5 * tol:  # a feature narrower than the window's grid step (a
+                    # flat curvature maximum 1e-3 wide between two feet of a branch point)
+                    e = min(e, fb.local_medial_distance(p, foot[0], foot[1], 4 * e + tol))
                 if e > 0.5 * tol:  # next to a nearly flat corner: the bisector
                     e = min(e, fb.local_bisector_distance(p, foot[0], foot[1]))
             elif vertex is not None:  # a reflex vertex

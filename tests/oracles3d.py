@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -75,7 +75,7 @@ from OCP.TopTools import TopTools_IndexedDataMapOfShapeListOfShape, TopTools_Ind
 from scipy.optimize import minimize
 from scipy.spatial import cKDTree
 
-from tests.oracles import _pnt, _vertex, _xyz, as_occ, bbox_diagonal
+from tests.oracles import _pnt, _vertex, _xyz, as_occ, bbox_diagonal, equidistant_point
 
 __all__ = [
     "ShapeDistance",
@@ -736,28 +736,23 @@ class SolidBoundary:
         """The point equidistant from faces ``i`` and ``j`` reached from ``x0`` by Newton
         (``uvi``, ``uvj``: ``gp_Pnt2d`` starting feet), if it is a medial point (both feet
         inside their faces, the ball empty)."""
-        pi, pj = uvi, uvj
-        c = x0.copy()
+        uv = {i: uvi, j: uvj}
 
         def foot(k: int, prev: Any, x: FloatArray) -> tuple[Any, FloatArray]:
             q2 = self._sas[k].NextValueOfUV(prev, _pnt(x), 1e-12 * self.diag)
             return q2, _xyz(self._surf[k].Value(q2.X(), q2.Y()))
 
-        for _ in range(60):
-            pi, qi = foot(i, pi, c)
-            pj, qj = foot(j, pj, c)
-            di, dj = float(np.linalg.norm(c - qi)), float(np.linalg.norm(c - qj))
-            if di <= 0 or dj <= 0:
-                return None
-            g = (c - qi) / di - (c - qj) / dj
-            gg = float(g @ g)
-            if gg <= 1e-30:
-                return None
-            step = (di - dj) * g / gg
-            c = c - step
-            # (the root is resolved to rounding / |g| only: steps of that size dither)
-            if float(np.linalg.norm(step)) <= self.eps + 1e-12 * self.diag / math.sqrt(gg):
-                break
+        def warm(k: int) -> Callable[[FloatArray], FloatArray]:
+            def near(x: FloatArray) -> FloatArray:
+                uv[k], q = foot(k, uv[k], x)
+                return q
+
+            return near
+
+        c, degenerate = equidistant_point(x0, warm(i), warm(j), self.eps, self.diag)
+        if degenerate:
+            return None
+        pi, pj = uv[i], uv[j]
         pi, qi = foot(i, pi, c)
         pj, qj = foot(j, pj, c)
         di, dj = float(np.linalg.norm(c - qi)), float(np.linalg.norm(c - qj))

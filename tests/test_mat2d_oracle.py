@@ -4,6 +4,7 @@ result's own tolerance and printed relative to the bounding-box diagonal."""
 
 from __future__ import annotations
 
+import itertools
 import os
 from pathlib import Path
 from typing import Any
@@ -156,14 +157,9 @@ def test_weak_curvature_maximum_beside_a_second_contact_has_its_branch() -> None
     the maximum, a fifth of the sample spacing; the samples beside it all had their
     partners far away, so the branch went unseen (completeness 7.6 tol). Every empty
     osculating disk at a curvature maximum is an end point, and the oracles pass."""
-    from OCP.BinTools import BinTools
-    from OCP.TopoDS import TopoDS_Shape
     from scipy.optimize import minimize_scalar
 
-    shape = TopoDS_Shape()
-    BinTools.Read_s(
-        shape, str(Path(__file__).parent / "data" / "blob_weak_curvature_maximum.bbrep")
-    )
+    shape = F.read_exact("blob_weak_curvature_maximum.bbrep")
     face = TopoDS.Face_s(shape)
     res = compute(face)
     fb = O.FaceBoundary(face)
@@ -192,17 +188,44 @@ def test_branch_point_beside_a_flat_curvature_maximum_keeps_its_branches() -> No
     (r = 0.36979). With samples seeded at curvature maxima (reverted), the jumps beside
     the maximum went unseen: the branch point and its branch to a curvature centre were
     lost (completeness 0.118 diag)."""
-    from OCP.BinTools import BinTools
-    from OCP.TopoDS import TopoDS_Shape
 
     from medialcad.recognition import recognize
 
-    shape = TopoDS_Shape()
-    BinTools.Read_s(shape, str(Path(__file__).parent / "data" / "blob_thin_extrusion.bbrep"))
+    shape = F.read_exact("blob_thin_extrusion.bbrep")
     profile = recognize(shape).profile
     res = compute(profile)
     assert any(abs(n.radius - 0.37001) < 1e-4 for n in res.branch_points)
     check_with_oracles(profile, "thin blob profile", n_boundary=400, per_branch=30)
+
+
+def test_flat_maximum_between_two_feet_of_a_branch_point_has_its_branch() -> None:
+    """The same profile: the branch point of r = 0.37001 touches the boundary at two
+    points only 1.1e-3 apart, between two samples; the stretch between them bulges out
+    of its disk by 5e-7 and holds a flat curvature maximum (radius 0.36979) whose centre
+    ends a branch ~10 tol long. That branch was missing (the branch point had three feet
+    and two branches: 7.9 tol incomplete there, and a thin extrusion's mid sheet did not
+    close). Every true medial point of that stretch lies on the medial axis."""
+    from medialcad.recognition import recognize
+
+    profile = recognize(F.read_exact("blob_thin_extrusion.bbrep")).profile
+    res = compute(profile)
+    (bp,) = [n for n in res.branch_points if abs(n.radius - 0.37001) < 1e-4]
+    feet = sorted(f.param for f in bp.footpoints)
+    t0, t1 = min(itertools.pairwise(feet), key=lambda ab: ab[1] - ab[0])
+    assert t1 - t0 < 2e-3  # the case: two feet close together
+    # its own branch, to the centre of the flat maximum
+    ends = [b.end if b.start == bp.index else b.start for b in res.graph.branches]
+    ends = [
+        e for b, e in zip(res.graph.branches, ends, strict=True) if bp.index in (b.start, b.end)
+    ]
+    assert len(ends) == 3
+    assert any(abs(res.nodes[e].radius - 0.36979) < 1e-5 for e in ends)
+    fb = O.FaceBoundary(profile)
+    assert len(fb.curves) == 1  # one closed B-spline: the feet's parameters are its own
+    target = O.ShapeDistance(compound(res))
+    truth = np.array([fb.medial_point(0, t) for t in np.linspace(t0, t1, 41)[1:-1]])
+    err = target.distances(truth)
+    assert err.max() <= res.tol, f"the stretch's medial points {err.max() / res.tol:.2f} tol off"
 
 
 def test_tip_sharper_than_the_tolerance_ends_a_branch() -> None:
@@ -210,11 +233,8 @@ def test_tip_sharper_than_the_tolerance_ends_a_branch() -> None:
     1.8e-5 (0.7 tol): the branch into it ends at the tip's centre, within the tolerance
     of the boundary. The oracle took such a sample for a boundary point away from every
     convex corner (unsound, inf); at the tolerance the tip is a corner."""
-    from OCP.BinTools import BinTools
-    from OCP.TopoDS import TopoDS_Shape
 
-    shape = TopoDS_Shape()
-    BinTools.Read_s(shape, str(Path(__file__).parent / "data" / "blob_sharp_tip.bbrep"))
+    shape = F.read_exact("blob_sharp_tip.bbrep")
     face = TopoDS.Face_s(shape)
     res = compute(face)
     tips = O.FaceBoundary(face).sharp_tips(2 * res.tol)

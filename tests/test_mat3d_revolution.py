@@ -1090,13 +1090,8 @@ def test_reflex_vertex_off_its_adjacent_line_by_the_joint_tolerance() -> None:
     radius 0.17 (the mean) with a foot 0.45 away, and the 2D MAT never reached the
     tolerance. A line ending at a reflex vertex is behind every normal of it (and the
     vertex on the tangent of its own line): no partner, exactly."""
-    from OCP.BinTools import BinTools
-    from OCP.TopoDS import TopoDS_Shape
 
-    shape = TopoDS_Shape()
-    BinTools.Read_s(
-        shape, str(Path(__file__).parent / "data" / "polygon_revolution_spurious_foot.bbrep")
-    )
+    shape = F.read_exact("polygon_revolution_spurious_foot.bbrep")
     _, num = mat_and_numbers(shape, "reflex vertex off its line", n_complete=60)
     assert_oracles(num)
     from medialcad import medial_axis_2d
@@ -1185,15 +1180,31 @@ def test_near_circular_bspline_profile_small_angle(n: int, margin: float) -> Non
     assert_oracles(num)
 
 
-@pytest.mark.parametrize("n", [5, 7, 0], ids=["blob-5", "blob-7", "ellipse"])
-def test_segment_rows_are_exact_medial_points(n: int) -> None:
+def _pocket_profile() -> Any:
+    return recognize(F.read_exact("blob_thin_extrusion.bbrep")).profile
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: F.bspline_blob([0.5] * 5),
+        lambda: F.bspline_blob([0.5] * 7),
+        lambda: F.ellipse(3.0, 2.0),
+        _pocket_profile,
+    ],
+    ids=["blob-5", "blob-7", "ellipse", "flat-maximum-between-two-feet"],
+)
+def test_segment_rows_are_exact_medial_points(make: Any) -> None:
     """Every row a segment carries into the 3D sheets is a medial point: its centre is
     ``r`` from both feet (to 0.05 tol) and the feet advance along the rows without
     stepping back, next to curvature-centre ends too (near-circular blobs, where a foot
     projected from a centre within tol of the branch is off by ``delta / (1 - r k)``), and
     on a full ellipse (one closed edge: a row solved from its foot across the seam once
-    averaged parameters 0 and 2 pi into a foot on the far side)."""
-    res = medial_axis_2d(F.bspline_blob([0.5] * n) if n else F.ellipse(3.0, 2.0))
+    averaged parameters 0 and 2 pi into a foot on the far side), and on a branch from a
+    branch point into a flat curvature maximum between two of its feet (no samples of its
+    own, the radius steep in one foot: rows from its spline had feet anywhere on the
+    stretch and looped a thin extrusion's mid sheet boundary)."""
+    res = medial_axis_2d(make())
     tol = res.tol
     for s in split_branches(res.graph, res.boundary, None):
         for foot in (s.foot_a, s.foot_b):
@@ -1242,14 +1253,7 @@ def _at_a_critical_angle(draw: st.DrawFn) -> tuple[Any, float, float]:
     ``Theta = 2 asin(r / x)`` at a branch point (the mid sheet's level curve runs through
     it), at the medial point of largest ``r / x`` (the mid sheet shrinks to nothing) or at
     the largest disk (``r = Rmax``)."""
-    face = draw(
-        st.one_of(
-            F.star_polygon_strategy(),
-            F.polygon_with_holes_strategy(),
-            F.line_arc_fillet_mix(),
-            F.random_bspline_blob(),
-        )
-    )
+    face = draw(F.any_profile())
     margin = draw(st.floats(0.05, 3.0))
     placed = F.place(face, F.Placement(np.eye(3), np.array([1.0 + margin, 0.0, 0.0])))
     mat = medial_axis_2d(placed)  # only to choose the angle: the oracles judge the result
@@ -1276,15 +1280,10 @@ def test_sheet_of_a_tiny_fillet_spoke_is_sound() -> None:
     the spoke are within the tolerance of the true MAT, measured by the bisector of the two
     cones (:meth:`SolidBoundary.local_bisector_distance`), and the 2D profile's axis there
     by the 2D oracle's."""
-    from OCP.BinTools import BinTools
-    from OCP.TopoDS import TopoDS_Shape
 
     from tests import oracles as O2
 
-    shape = TopoDS_Shape()
-    BinTools.Read_s(
-        shape, str(Path(__file__).parent / "data" / "revolution_tiny_fillet_spoke.bbrep")
-    )
+    shape = F.read_exact("revolution_tiny_fillet_spoke.bbrep")
     m = revolution_mat(shape)
     rec = m.recognition
     # (the profile has two fillets of radius 0.2: both spokes are checked)

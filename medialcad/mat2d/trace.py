@@ -811,7 +811,12 @@ def _complete_feet(
         if len(on):
             on = on[np.argsort(S.s[on])]
             k = np.searchsorted(S.s[on], sq)
-            covered[q] |= S.is_self[on[k % len(on)]] | S.is_self[on[(k - 1) % len(on)]]
+            for nb in (on[k % len(on)], on[(k - 1) % len(on)]):
+                # only where that disk is the node's own (a curvature centre ~10 tol from
+                # the branch point, at a flat maximum between two of its feet, swallowed
+                # both feet: the branch between them was lost)
+                near = np.linalg.norm(S.centre[nb] - node_pt[q], axis=1) <= radius
+                covered[q] |= S.is_self[nb] & near
     added: list[_Event] = []
     for i in np.nonzero(~covered)[0]:
         e, k = feet[i]
@@ -998,7 +1003,7 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
         n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
         intervals = _retarget_corner_ends(S, intervals, events, max(tol, 10 * settings.eps_s))
         kept = _thin(S, _dedupe(S, intervals, twin, tol), 1e-2 * tol, 0.5 * tol)
-        added = _missing_fit(tr, S, kept, tol) + _fill_empty(tr, kept)
+        added = _missing_fit(tr, S, kept, tol) + _fill_empty(tr, kept, intervals)
         if not added:
             graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
             _check_topology(graph, len(tr.L))
@@ -1422,17 +1427,26 @@ _QUARTERS = np.array([0.5, 0.25, 0.75])  # check points of a step over a joint
 _MAX_PARTS = 8  # most parts a step missed by its spline is split into in one round
 
 
-def _fill_empty(tr: _Tracer, kept: list[_Interval]) -> list[MapSamples]:
-    """Samples inside kept intervals that have none between their two distinct nodes
-    (a short branch between nearby branch points, whose events are solved exactly and
-    whose bracketing samples hug the nodes): a quarter, half and three quarters of the
-    way, once per interval."""
+def _fill_empty(tr: _Tracer, kept: list[_Interval], intervals: list[_Interval]) -> list[MapSamples]:
+    """Samples inside intervals that have none: a quarter, half and three quarters of the
+    way, once per interval.
+
+    - kept intervals between two distinct nodes: a short branch between nearby branch
+      points, whose events are solved exactly and whose bracketing samples hug the nodes;
+    - any interval from a branch point back to the same node (between two of its feet):
+      the boundary stretch between them lies outside the node's disk and may hold a
+      branch of its own (a flat curvature maximum 0.0012 wide beside a blob's branch
+      point, between two samples: its branch, ~10 tol long to the centre of curvature,
+      was missing, and a thin extrusion's mid sheet did not close); the samples there
+      find its events, or are the node's own disk (an arc of it) and add nothing."""
     loops: list[int] = []
     ss: list[float] = []
-    for iv in kept:
+    for iv in (*kept, *intervals):
         if len(iv.samples) or iv.start is None or iv.end is None:
             continue
-        if iv.start.node == iv.end.node:
+        if iv.start.node == iv.end.node and (
+            iv.start is iv.end or iv.start.kind is not NodeKind.BRANCH_POINT
+        ):
             continue
         a, span = _span(iv.start, iv.end, tr.L[iv.loop])
         key = (iv.loop, float(a), float(span), -1)
@@ -1527,9 +1541,9 @@ def _assemble(
         b_el, b_par, b_pt = S.partner_element[smp], S.partner_param[smp], S.partner_point[smp]
         cols: list[tuple] = [(a_el, a_par, a_pt, b_el, b_par, b_pt)]
         if iv.start is not None:
-            cols.insert(0, _pad(0, S, smp, iv.start, nodes[iv.start.node].footpoints))
+            cols.insert(0, _pad(0, S, smp, iv.start, nodes[iv.start.node].footpoints, iv.end))
         if iv.end is not None:
-            cols.append(_pad(-1, S, smp, iv.end, nodes[iv.end.node].footpoints))
+            cols.append(_pad(-1, S, smp, iv.end, nodes[iv.end.node].footpoints, iv.start))
         if iv.start is None:  # closed loop: back to the first sample
             cols.append(tuple(x[:1] for x in cols[0]))
         a_el, a_par, a_pt, b_el, b_par, b_pt = (
@@ -1594,9 +1608,41 @@ def _one_foot(tr: _Tracer, a: int, b: int) -> bool:
     return ((a, b) if a < b else (b, a)) in tr.smooth_pairs
 
 
-def _pad(where: int, S: MapSamples, smp: IntArray, ev: _Event, node_feet: tuple) -> tuple:
+def _pad(
+    where: int,
+    S: MapSamples,
+    smp: IntArray,
+    ev: _Event,
+    node_feet: tuple,
+    other: _Event | None = None,
+) -> tuple:
     """Footpoints at an end node (one row of the six foot columns): a branch point's own
-    footpoints on the two sides, a convex vertex itself, otherwise the nearest sample's."""
+    footpoints on the two sides, a convex vertex itself, otherwise the nearest sample's.
+    A branch with no samples from a branch point to a curvature centre ``other`` (a flat
+    maximum between two of the branch point's feet, its samples all osculating) has the
+    event's own foot on one side and, on the other, the node's foot nearest the centre's
+    foot: the stretch between those two feet is the branch's."""
+    if (
+        not len(smp)
+        and ev.kind is NodeKind.BRANCH_POINT
+        and other is not None
+        and other.kind is NodeKind.CURVATURE_CENTRE
+        and other.feet
+        and len(node_feet) > 1
+    ):
+        el, par, fp = ev.feet[0]
+        tip = np.asarray(other.feet[0][2])
+        rest = [f for f in node_feet if np.linalg.norm(f.point_2d - np.asarray(fp)) > 0]
+        if rest:
+            g = min(rest, key=lambda f: float(np.linalg.norm(f.point_2d - tip)))
+            return (
+                np.array([el]),
+                np.array([par]),
+                np.asarray(fp)[None, :],
+                np.array([g.element]),
+                np.array([g.param]),
+                g.point_2d[None, :],
+            )
     if len(smp):
         j = smp[0] if where == 0 else smp[-1]
         vals = (

@@ -24,12 +24,14 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import make_interp_spline
 
+from medialcad.mat2d.boundary import Boundary
 from medialcad.mat2d.graph import NodeKind
-from medialcad.mat3d.segments import Segment
+from medialcad.mat3d.segments import Segment, foot_normals
 
 __all__ = ["PatchRows", "RowData", "extrusion_rows", "interp_rows"]
 
 FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
 
 
 @dataclass(frozen=True)
@@ -76,16 +78,51 @@ def interp_rows(w: FloatArray, *values: FloatArray) -> tuple[FloatArray, int, li
     return t, k, out
 
 
+def _side_parameter(rows: FloatArray, fallback: FloatArray) -> tuple[FloatArray, IntArray]:
+    """One side's rows of a high segment (its foot and offset point, functions of the
+    foot alone: the side's cap sheets and its stretch of the mid sheet's boundary)
+    parametrized by their own chord length, and the rows kept (where they move).
+
+    The branch's parameter follows the centres, and the two sides need not move alike:
+    where the radius is steep in one foot (a branch into a flat curvature maximum between
+    two feet of a branch point: 3 tol of branch for 1e-9 of foot), or next to a
+    curvature-centre end, one side's feet stand still for many rows and then jump, and
+    its offset seam interpolated on the branch's parameter looped."""
+    step = np.linalg.norm(np.diff(rows, axis=0), axis=1)
+    total = float(step.sum())
+    n = len(rows)
+    if n < 2 or not total > 0:
+        return fallback, np.arange(n)
+    gap = 1e-9 * total
+    keep = [0]
+    for i in range(1, n):
+        if np.linalg.norm(rows[i] - rows[keep[-1]]) > gap:
+            keep.append(i)
+    if keep[-1] != n - 1:  # the end row (its node or level) stays, in place of the last
+        if len(keep) > 1:
+            keep[-1] = n - 1
+        else:
+            keep.append(n - 1)
+    idx = np.array(keep, dtype=np.int64)
+    w = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(rows[idx], axis=0), axis=1))])
+    return w / w[-1], idx
+
+
 def extrusion_rows(
     segments: list[Segment],
     to_model: Callable[[FloatArray], FloatArray],
     length: float,
     high_level: float | None,
+    boundary: Boundary | None = None,
 ) -> tuple[list[PatchRows], list[tuple], list[EndLine], list[tuple[FloatArray, float]]]:
     """Patches, offset-seam keys (mid sheet boundary), end lines and junctions.
 
     ``to_model`` maps ``(n, 3)`` canonical points (profile coordinates, height) to model
-    space. ``high_level`` is ``L/2`` when there is a mid sheet, else ``None``.
+    space. ``high_level`` is ``L/2`` when there is a mid sheet, else ``None``. With the
+    ``boundary``, the offset seams are ``f + h n(f)`` with the boundary's own normal at
+    each foot ``f`` (exact whatever the row's centre: next to a curvature-centre end the
+    rows' feet stand still while their centres move, and ``(c - f) / r`` turned the seam
+    into a loop).
     """
     L = length
     patches: list[PatchRows] = []
@@ -137,16 +174,28 @@ def extrusion_rows(
             h = high_level
             nrm_a = (s.centre - s.foot_a) / np.maximum(r, 1e-300)[:, None]
             nrm_b = (s.centre - s.foot_b) / np.maximum(r, 1e-300)[:, None]
+            if boundary is not None:
+                for nrm, el, f in ((nrm_a, s.element_a, s.foot_a), (nrm_b, s.element_b, s.foot_b)):
+                    exact = foot_normals(boundary, el, f)
+                    if exact is not None:
+                        # (not at the end rows: a neighbouring segment shares them, with
+                        # its own foot's element: a transition to a reflex vertex)
+                        on = np.isfinite(exact[:, 0])
+                        on[[0, -1]] = False
+                        nrm[on] = exact[on]
             oa = s.foot_a + h * nrm_a
             ob = s.foot_b + h * nrm_b
             # at a level end the offset point is the centre itself
             for i, end in ((0, s.start), (-1, s.end)):
                 if end.kind == "level":
                     oa[i] = ob[i] = s.centre[i]
-            t, k, (fa, fb, ca, cb) = interp_rows(s.w, s.foot_a, s.foot_b, oa, ob)
-            n = len(fa)
-            zero, hh = np.zeros(n), np.full(n, h)
-            for side, f, o in (("a", fa, ca), ("b", fb, cb))[: 1 if s.single else 2]:
+            for side, f_rows, o_rows in (("a", s.foot_a, oa), ("b", s.foot_b, ob))[
+                : 1 if s.single else 2
+            ]:
+                w, keep = _side_parameter(np.hstack([f_rows, o_rows]), s.w)
+                t, k, (f, o) = interp_rows(w, f_rows[keep], o_rows[keep])
+                n = len(f)
+                zero, hh = np.zeros(n), np.full(n, h)
                 orow = RowData(("OFF", si, side), to_model(np.column_stack([o, hh])), hh)
                 bot = RowData(("F0", si, side), to_model(np.column_stack([f, zero])), zero)
                 top = RowData(("FL", si, side), to_model(np.column_stack([f, np.full(n, L)])), zero)

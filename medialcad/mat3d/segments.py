@@ -24,7 +24,7 @@ from medialcad.mat2d.boundary import Boundary, Element
 from medialcad.mat2d.curves import CircleCurve, EllipseCurve
 from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
 
-__all__ = ["End", "Segment", "split_branches"]
+__all__ = ["End", "Segment", "foot_normals", "split_branches"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -245,6 +245,24 @@ def _project_params(
     return np.asarray(t)
 
 
+def foot_normals(boundary: Boundary, element: int, feet: FloatArray) -> FloatArray | None:
+    """The boundary's inward unit normals at ``feet`` (points on the edge ``element``),
+    NaN at a foot that is not on it (a segment's end foot on a neighbouring element);
+    ``None`` for a reflex vertex (its normals are the directions to the centres) and for
+    a fan's stretch over several elements (``element < 0``)."""
+    if element < 0:
+        return None
+    e = boundary.elements[element]
+    if e.piece is None:
+        return None
+    t = _project_params(boundary, element, feet)
+    p, n, _ = boundary.frame_at(e, t)
+    n = np.array(n, dtype=float)
+    scale = max(1.0, float(np.abs(feet).max(initial=0.0)))
+    n[np.linalg.norm(p - feet, axis=1) > 1e-9 * scale] = np.nan
+    return n
+
+
 def _loop_points(boundary: Boundary, loop: int, s0: float, s1: float, step: float) -> FloatArray:
     """Boundary points on loop coordinates ``s0 -> s1`` (increasing, may pass the seam)."""
     length = boundary.loop_lengths[loop]
@@ -349,6 +367,9 @@ def _fan(
 def _split(
     graph: MedialGraph, boundary: Boundary, b: Branch, level: float | LevelFn | None
 ) -> list[Segment]:
+    pocket = _pocket(graph, boundary, b, level)
+    if pocket is not None:
+        return [pocket]
     pts = b.points_2d
     u = _chord(pts)
     sp = b.spline
@@ -624,6 +645,129 @@ def _refine(
     return w, centre, radius, foot_a, foot_b
 
 
+def _pocket(
+    graph: MedialGraph, boundary: Boundary, b: Branch, level: float | LevelFn | None
+) -> Segment | None:
+    """The segment of a branch from a branch point into a flat curvature maximum between
+    two of its feet, built from the boundary stretch itself; ``None`` for other branches.
+
+    Such a branch (a blob's maximum 1e-3 wide between two feet of a branch point, the
+    branch ~10 tol long) has no samples of its own: the tracer's samples there all
+    osculate. Rows from its (straight) spline are ill-conditioned: the radius is steep in
+    one foot next to the branch point (3 tol of branch for 1e-9 of foot) and projected
+    feet land anywhere on the stretch. Here each row is solved exactly from a foot on
+    either half of the stretch (the least tangent-disk radius over the other half, a
+    bounded Brent search), and the rows are ordered by how far their feet are from the
+    maximum (both move away from it monotonically)."""
+    from scipy.optimize import minimize_scalar
+
+    if b.start is None or b.end is None or len(b.points_2d) > 2:
+        return None
+    kinds = {_end_kind(graph, b.start), _end_kind(graph, b.end)}
+    if kinds != {NodeKind.BRANCH_POINT, NodeKind.CURVATURE_CENTRE}:
+        return None
+    el = int(b.foot_a_element[0])
+    if not (np.all(b.foot_a_element == el) and np.all(b.foot_b_element == el)):
+        return None
+    e = boundary.elements[el]
+    if e.piece is None:
+        return None
+    period = _closed_period(e)
+    t0 = min(e.piece.t0, e.piece.t1)
+    flip = _end_kind(graph, b.start) is NodeKind.BRANCH_POINT
+    if flip:
+        bp, cc = graph.nodes[b.start], graph.nodes[b.end]
+    else:
+        bp, cc = graph.nodes[b.end], graph.nodes[b.start]
+    t_cc = float(_project_params(boundary, el, cc.point_2d[None, :])[0])
+
+    def near(t: float) -> float:  # a closed curve's parameter, the short way from t_cc
+        if period is None:
+            return t
+        return t_cc + (t - t_cc + 0.5 * period) % period - 0.5 * period
+
+    def wrap(t: float) -> float:
+        return t if period is None else t0 + (t - t0) % period
+
+    # the branch point's two feet on this element nearest the maximum, one either side
+    feet = [(near(f.param), f) for f in bp.footpoints if f.element == el]
+    lo = [x for x in feet if x[0] < t_cc]
+    hi = [x for x in feet if x[0] > t_cc]
+    if not lo or not hi:
+        return None
+    ta_end, fa = max(lo, key=lambda x: x[0])
+    tb_end, fb = min(hi, key=lambda x: x[0])
+    curve = e.piece.curve
+
+    def point(t: float) -> FloatArray:
+        return np.asarray(curve.point(np.array([wrap(t)]))[0], dtype=float)
+
+    def solve(t: float, other: tuple[float, float]) -> tuple[FloatArray, float, FloatArray, float]:
+        bq, nq, _ = boundary.frame_at(e, np.array([wrap(t)]))
+
+        def f(x: float) -> float:
+            q = point(x) - bq[0]
+            h = float(q @ nq[0])
+            return float(q @ q) / (2.0 * h) if h > 0 else np.inf
+
+        lo, hi = sorted(other)
+        res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": 1e-15})
+        x, r = float(res.x), float(res.fun)
+        if not (np.isfinite(r) and lo + 1e-9 * (hi - lo) < x < hi - 1e-9 * (hi - lo)):
+            r = np.nan  # the partner is beyond the stretch: no row of this branch
+        return bq[0] + r * nq[0], r, bq[0], x
+
+    rows: list[tuple[float, float, FloatArray, float, FloatArray, FloatArray]] = []
+    # evenly along either half, and closing in on the branch point (the radius is steep
+    # in one foot there)
+    grid = np.r_[np.arange(1, 12) / 12.0, 1.0 - 10.0 ** -np.arange(2.0, 8.0)]
+    for g in grid:
+        ta = t_cc + (ta_end - t_cc) * g
+        c, r, qa, tb = solve(ta, (t_cc, tb_end))
+        rows.append((abs(ta - t_cc), abs(tb - t_cc), c, r, qa, point(tb)))
+        tb = t_cc + (tb_end - t_cc) * g
+        c, r, qb, ta2 = solve(tb, (ta_end, t_cc))
+        rows.append((abs(ta2 - t_cc), abs(tb - t_cc), c, r, point(ta2), qb))
+    # a disk larger than the branch point's is not maximal: it reaches past the node's
+    # other foot (its foot belongs to the node's other branches)
+    rows = [x for x in rows if np.isfinite(x[3]) and cc.radius <= x[3] <= bp.radius]
+    rows.sort(key=lambda x: x[0] + x[1])
+    # both feet move away from the maximum: a row where one steps back (by rounding, where
+    # the other foot races) or barely moves is dropped
+    span = abs(ta_end - t_cc) + abs(tb_end - t_cc)
+    mono: list[tuple[float, float, FloatArray, float, FloatArray, FloatArray]] = []
+    last = (0.0, 0.0)
+    for x in rows:
+        if x[0] >= last[0] and x[1] >= last[1] and x[0] + x[1] > sum(last) + 2e-3 * span:
+            mono.append(x)
+            last = (x[0], x[1])
+    inner = [x[2:] for x in mono if x[0] + x[1] < span * (1 - 2e-3)]
+    if len(inner) < 4:
+        return None
+    tip = np.asarray(cc.footpoints[0].point_2d) if cc.footpoints else point(t_cc)
+    centre = np.vstack([cc.point_2d, *[x[0] for x in inner], bp.point_2d])
+    radius = np.array([cc.radius, *[x[1] for x in inner], bp.radius])
+    foot_a = np.vstack([tip, *[x[2] for x in inner], fa.point_2d])
+    foot_b = np.vstack([tip, *[x[3] for x in inner], fb.point_2d])
+    if level is not None:  # a level crossing: the general path cuts it there
+        g = level(centre, radius) if callable(level) else radius - float(level)
+        if np.any(np.sign(g[1:]) != np.sign(g[0])):
+            return None
+    # parametrized by the feet's chord length (the centres stand still while a foot moves)
+    w = np.concatenate(
+        [[0.0], np.cumsum(np.linalg.norm(np.diff(np.hstack([foot_a, foot_b]), axis=0), axis=1))]
+    )
+    w = w / w[-1]
+    start = End("node", cc.index, NodeKind.CURVATURE_CENTRE)
+    end = End("node", bp.index, NodeKind.BRANCH_POINT)
+    if not flip:
+        return Segment(b.index, w, centre, radius, foot_a, foot_b, el, el, start, end)
+    return Segment(
+        b.index, 1.0 - w[::-1], centre[::-1], radius[::-1], foot_a[::-1], foot_b[::-1],
+        el, el, end, start,
+    )  # fmt: skip
+
+
 def _closed_period(e: Element) -> float | None:
     """The parameter period of an element that is a whole closed curve (a periodic
     B-spline, a full ellipse or circle), else None."""
@@ -644,11 +788,46 @@ def _from_foot(
     rows: IntArray,
 ) -> list[tuple[FloatArray, float, FloatArray, FloatArray]]:
     """Exact medial points between rows ``j`` and ``j + 1`` (``j`` in ``rows``), solved from
-    side a's foot midway between theirs: the radius is the least ``f(q) = |q - b|^2 /
-    (2 (q - b).n)`` (the disk tangent at ``b`` through ``q``) over ``q`` on side b's
-    element between its two feet (a bounded Brent search). The radius, hence the centre
-    ``b + r n``, is exact to rounding where a centre from the branch spline projects to
-    feet that are off by ``delta / (1 - r k)``."""
+    the foot midway between theirs on side a (side b where its feet are several times
+    further apart than side a's): the radius
+    is the least ``f(q) = |q - b|^2 / (2 (q - b).n)`` (the disk tangent at ``b`` through
+    ``q``) over ``q`` on the other side's element between its two feet (a bounded Brent
+    search). The radius, hence the centre ``b + r n``, is exact to rounding where a
+    centre from the branch spline projects to feet that are off by ``delta / (1 - r k)``.
+    Solving from the side that moves matters where one side's foot stands still (a
+    branch into a flat curvature maximum between two feet of a branch point: 3 tol of
+    branch while side a's foot moves 1e-9; solved from side a, rows piled up there)."""
+    # (side a unless side b moves several times more: near a curvature-centre end
+    # both move alike)
+    from_b = np.linalg.norm(foot_b[rows + 1] - foot_b[rows], axis=1) > 4.0 * np.linalg.norm(
+        foot_a[rows + 1] - foot_a[rows], axis=1
+    )
+    out: list[tuple[FloatArray, float, FloatArray, FloatArray]] = [
+        (np.zeros(2), np.nan, np.zeros(2), np.zeros(2))
+    ] * len(rows)
+    for flip in (False, True):
+        sel = np.nonzero(from_b == flip)[0]
+        if not len(sel):
+            continue
+        if flip:
+            got = _solve_from(boundary, el_b, el_a, foot_b, foot_a, rows[sel])
+            got = [(c, r, fa, fb) for c, r, fb, fa in got]
+        else:
+            got = _solve_from(boundary, el_a, el_b, foot_a, foot_b, rows[sel])
+        for i, g in zip(sel.tolist(), got, strict=True):
+            out[i] = g
+    return out
+
+
+def _solve_from(
+    boundary: Boundary,
+    el_a: int,
+    el_b: int,
+    foot_a: FloatArray,
+    foot_b: FloatArray,
+    rows: IntArray,
+) -> list[tuple[FloatArray, float, FloatArray, FloatArray]]:
+    """:func:`_from_foot` from side a's foot (``(centre, r, foot a, foot b)`` a row)."""
     from scipy.optimize import minimize_scalar
 
     ea, eb = boundary.elements[el_a], boundary.elements[el_b]

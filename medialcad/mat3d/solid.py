@@ -84,7 +84,9 @@ def _extrusion(reading: Extrusion, mat2d: Any, diag: float, tol: float) -> tuple
         p = np.asarray(p, dtype=float)
         return np.asarray(frame.to_3d(p[:, :2]) + p[:, 2:3] * d)
 
-    patches, offsets, lines, junctions = extrusion_rows(segments, to_model, L, level)
+    patches, offsets, lines, junctions = extrusion_rows(
+        segments, to_model, L, level, mat2d.boundary
+    )
     mid = None
     if level is not None:
         mid = (frame.origin + h * d, frame.xdir, frame.ydir)
