@@ -1099,23 +1099,30 @@ def _retarget_corner_ends(
         return intervals
     ids = list(node_of)
     tree = cKDTree(np.array([node_of[k].point for k in ids]))
-    c = S.centre
-
-    def better(ev: _Event | None, smp: int) -> _Event | None:
-        if ev is None or ev.kind is not NodeKind.CONVEX_VERTEX:
-            return ev
-        if np.linalg.norm(c[smp] - ev.point) <= 10 * radius or S.radius[smp] <= 10 * radius:
-            return ev
-        d, k = tree.query(c[smp])
-        return node_of[ids[int(k)]] if d <= radius else ev
-
-    out = []
-    for iv in intervals:
+    # every (interval, end) at a convex corner, asked at once
+    asks: list[tuple[int, int, int]] = []  # (interval, 0 start / 1 end, sample)
+    corners: list[FloatArray] = []
+    for i, iv in enumerate(intervals):
         if len(iv.samples):
-            start, end = better(iv.start, iv.samples[0]), better(iv.end, iv.samples[-1])
-            if start is not iv.start or end is not iv.end:
-                iv = dataclasses.replace(iv, start=start, end=end)
-        out.append(iv)
+            for s, ev, j in ((0, iv.start, iv.samples[0]), (1, iv.end, iv.samples[-1])):
+                if ev is not None and ev.kind is NodeKind.CONVEX_VERTEX:
+                    asks.append((i, s, int(j)))
+                    corners.append(ev.point)
+    if not asks:
+        return intervals
+    which, side, smp = (np.array(col, dtype=np.int64) for col in zip(*asks, strict=True))
+    corner = np.array(corners)
+    c = S.centre[smp]
+    far = (np.linalg.norm(c - corner, axis=1) > 10 * radius) & (S.radius[smp] > 10 * radius)
+    out = list(intervals)
+    if not np.any(far):
+        return out
+    d, k = tree.query(c[far])
+    for i, s, dd, kk in zip(which[far], side[far], d, k, strict=True):
+        if dd <= radius:
+            iv = out[i]
+            node = node_of[ids[int(kk)]]
+            out[i] = dataclasses.replace(iv, **({"start": node} if s == 0 else {"end": node}))
     return out
 
 
