@@ -1271,6 +1271,22 @@ def test_random_revolution_at_a_critical_angle(case: tuple[Any, float, float], s
     _check_random(face, margin, angle, seed, "critical")
 
 
+@pytest.mark.xfail(
+    strict=False,
+    reason="known (fuzz 2026-12-02, also on the engine of 461c450): the radius carried by "
+    "cap and revolved sheets of a 13-degree revolution at a critical angle is 1.35-1.42 tol "
+    "off the distance to the boundary, while its profile's 2D MAT is within 0.17 tol",
+)
+def test_critical_13_degree_revolution_carries_its_radius() -> None:
+    """A fresh random revolution at a critical angle (Theta = 2 asin(r/x) of one of its
+    profile's medial points, 13.08 degrees; kept exactly as binary BREP). Every oracle
+    passes but the radius: samples of cap and revolved sheets carry radii 1.35-1.42 tol
+    off their distance to the boundary (soundness 0.95 tol, completeness 0.6 tol)."""
+    shape = F.read_exact("revolution_critical_13deg_radius.bbrep")
+    _, num = mat_and_numbers(shape, "critical 13deg", n_complete=60)
+    assert_oracles(num)
+
+
 def test_sheet_of_a_tiny_fillet_spoke_is_sound() -> None:
     """A fresh random revolution (2026-12-02, 27 degrees, kept exactly as binary BREP)
     whose profile has a fillet of radius 0.2 and 7e-5 long rounding a corner that turns
