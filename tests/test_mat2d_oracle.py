@@ -243,6 +243,37 @@ def test_flat_maximum_between_two_feet_of_a_branch_point_has_its_branch() -> Non
     assert err.max() <= res.tol, f"the stretch's medial points {err.max() / res.tol:.2f} tol off"
 
 
+def _thin_blob_profile_placed(seed: int | None) -> Any:
+    """The thin blob's profile in its canonical frame (``None``: the profile plane is
+    z = 0, the extrusion along z) or moved by random placement ``seed``."""
+    from medialcad.recognition import recognize
+
+    reading = recognize(F.read_exact("blob_thin_extrusion.bbrep"))
+    fr = reading.frame
+    rot = np.column_stack([fr.xdir, fr.ydir, fr.zdir])
+    face = F.place(reading.profile, F.Placement(rot.T, -rot.T @ fr.origin))
+    return face if seed is None else F.place(face, F.random_placement(seed, 10.0))
+
+
+@pytest.mark.parametrize("seed", [None, 0, 1, 2], ids=["canonical", "seed0", "seed1", "seed2"])
+def test_moved_flat_maximum_profile_has_one_branch_into_its_pocket(seed: int | None) -> None:
+    """The same profile moved rigidly (canonical frame, random placements): its branch
+    point of r = 0.37001 hugs the nearly circular stretch (within tol of its disk along
+    1.5e-3 of the boundary), and jumps found its disk at five places there. Moved to the
+    canonical frame, the engine gave it five feet and the branch into the flat maximum
+    twice (a cycle in a face without holes: refused, and a thin extrusion of it was
+    refused). Feet with the boundary between them on the disk and no other foot between
+    are one contact: three feet, three branches, and the oracles pass."""
+    profile = _thin_blob_profile_placed(seed)
+    res = compute(profile)
+    assert cycle_rank(res) == (1, 0)
+    (bp,) = [n for n in res.branch_points if abs(n.radius - 0.37001) < 1e-4]
+    assert len(bp.footpoints) == 3
+    degree = sum((b.start == bp.index) + (b.end == bp.index) for b in res.graph.branches)
+    assert degree == 3
+    check_with_oracles(profile, "moved thin blob profile", n_boundary=400, per_branch=30)
+
+
 def test_tip_sharper_than_the_tolerance_ends_a_branch() -> None:
     """A fresh random blob (2026-12-02, kept exactly as binary BREP) with a tip of radius
     1.8e-5 (0.7 tol): the branch into it ends at the tip's centre, within the tolerance

@@ -49,6 +49,7 @@ from medialcad.mat2d.medial_map import (
     evaluate,
     pair_minima,
 )
+from medialcad.mat2d.pocket import POCKET_LENGTH, pocket_rows
 from medialcad.mat2d.spline import Spline, fit_spline
 
 __all__ = ["TraceSettings", "trace_medial_graph"]
@@ -1523,7 +1524,9 @@ def _assemble(
                     feet.append(Footpoint(el, par, np.asarray(fp, dtype=float)))
                     xy.append((x, y))
         nodes.append(Node(ni, kind, pt, frame.to_3d(pt), r, tuple(feet)))
+    nodes = _one_contact(boundary, nodes, events, tol)
     branches: list[Branch] = []
+    stray: list[float] = []  # how far each branch's end events' own feet are from the node's
     for iv in kept:
         pts, rad = _branch_arrays(S, iv)
         if iv.start is not None and iv.end is not None and iv.start.node == iv.end.node:
@@ -1556,6 +1559,11 @@ def _assemble(
         a_el, a_par, a_pt, b_el, b_par, b_pt = (
             np.concatenate([c[k] for c in cols]) for k in range(6)
         )
+        stray.append(
+            max(_stray(ev, nodes[ev.node]) for ev in (iv.start, iv.end) if ev is not None)
+            if iv.start is not None
+            else 0.0
+        )
         branches.append(
             Branch(
                 len(branches),
@@ -1572,8 +1580,185 @@ def _assemble(
                 spline,
             )
         )
+    branches = _drop_parallel(branches, stray, len(tr.L), tol)
     nodes, branches = _drop_stray_ends(nodes, branches)
+    branches = _exact_pockets(tr, nodes, branches, tol)
     return MedialGraph(frame, tol, tuple(nodes), tuple(branches), elements)
+
+
+def _one_contact(
+    boundary: Boundary, nodes: list[Node], events: list[_Event], tol: float
+) -> list[Node]:
+    """A branch point's feet next to each other on one edge, with the edge between them
+    within tol of its disk and no other node's foot between them, are one contact (the
+    disk of a branch point beside a nearly circular stretch, found by jumps at several
+    places along it): the foot most of its events name is kept. Branches then end on
+    the same feet (a second pair 7e-5 apart gave the pocket branch there twice, a cycle)."""
+    by_el: dict[int, list[float]] = {}
+    for nd in nodes:
+        for f in nd.footpoints:
+            by_el.setdefault(f.element, []).append(f.param)
+    votes: dict[tuple[int, float], int] = {}
+    for ev in events:
+        for el, par, _ in ev.feet:
+            votes[(int(el), float(par))] = votes.get((int(el), float(par)), 0) + 1
+    out: list[Node] = []
+    for nd in nodes:
+        if nd.kind is not NodeKind.BRANCH_POINT or len(nd.footpoints) <= 3:
+            out.append(nd)
+            continue
+        drop: set[int] = set()
+        order = sorted(
+            range(len(nd.footpoints)),
+            key=lambda k: (nd.footpoints[k].element, nd.footpoints[k].param),
+        )
+        for i, j in itertools.pairwise(order):
+            f, g = nd.footpoints[i], nd.footpoints[j]
+            e = boundary.elements[f.element]
+            if g.element != f.element or e.piece is None:
+                continue
+            lo, hi = f.param, g.param
+            if any(lo < t < hi for t in by_el[f.element] if t not in (lo, hi)):
+                continue
+            pts = e.piece.curve.point(np.linspace(lo, hi, 17))
+            dev = np.abs(np.linalg.norm(pts - nd.point_2d, axis=1) - nd.radius)
+            if dev.max() > tol:
+                continue
+            vf = votes.get((f.element, float(f.param)), 0)
+            vg = votes.get((g.element, float(g.param)), 0)
+            drop.add(j if vf >= vg else i)
+        feet = tuple(f for k, f in enumerate(nd.footpoints) if k not in drop)
+        out.append(dataclasses.replace(nd, footpoints=feet) if drop else nd)
+    return out
+
+
+def _exact_pockets(
+    tr: _Tracer, nodes: list[Node], branches: list[Branch], tol: float
+) -> list[Branch]:
+    """Short branches from a branch point into a flat curvature maximum between two of
+    its feet get exact rows solved from the boundary stretch
+    (:func:`~medialcad.mat2d.pocket.pocket_rows`): their samples osculate, and the spline
+    through the few there are was 3.8 tol off the bent branch."""
+    degree = np.zeros(len(nodes), dtype=np.int64)
+    for b in branches:
+        for n in (b.start, b.end):
+            if n is not None:
+                degree[n] += 1
+    out: list[Branch] = []
+    for b in branches:
+        rows = None
+        if b.start is not None and b.end is not None and b.start != b.end:
+            length = np.linalg.norm(np.diff(b.points_2d, axis=0), axis=1).sum()
+            first, last = nodes[b.start], nodes[b.end]
+            bp, cc = (first, last) if first.kind is NodeKind.BRANCH_POINT else (last, first)
+            if length <= POCKET_LENGTH * tol and degree[bp.index] >= 2:
+                rows = pocket_rows(tr.b, bp, cc, tol)
+        if rows is None:
+            out.append(b)
+            continue
+        order = slice(None, None, -1) if bp is first else slice(None)
+        centre, radius = rows.centre[order], rows.radius[order]
+        sides = [
+            (rows.param_a[order], rows.foot_a[order]),
+            (rows.param_b[order], rows.foot_b[order]),
+        ]
+        # side a keeps the branch's own side a (its foot at the branch point)
+        k = -1 if bp is last else 0
+        if abs(b.foot_a_param[k] - sides[1][0][k]) < abs(b.foot_a_param[k] - sides[0][0][k]):
+            sides.reverse()
+        el = np.full(len(centre), rows.element, dtype=np.int64)
+        spline = tr.fit(np.column_stack([centre, radius]))
+        (pa, fa), (pb, fb) = sides
+        out.append(dataclasses.replace(
+            b, points_2d=centre, radius=radius, foot_a_element=el, foot_a_param=pa,
+            foot_a_point=fa, foot_b_element=el.copy(), foot_b_param=pb, foot_b_point=fb,
+            spline=spline,
+        ))  # fmt: skip
+    return out
+
+
+def _stray(ev: _Event, node: Node) -> float:
+    """How far the event's own foot is from the nearest of its node's feet on its element
+    (0 where the node has none there)."""
+    el, _, fp = ev.feet[0]
+    d = [
+        float(np.linalg.norm(f.point_2d - np.asarray(fp)))
+        for f in node.footpoints
+        if f.element == el
+    ]
+    return min(d) if d else 0.0
+
+
+def _drop_parallel(
+    branches: list[Branch], stray: list[float], loops: int, tol: float
+) -> list[Branch]:
+    """Drop one of two branches joining the same two nodes along the same path, where the
+    graph has more cycles than the face has holes.
+
+    A cycle of the medial axis encloses a hole, whose boundary stays at least the radius
+    away from every medial point on the cycle: two branches that never part by more than
+    half their radius enclose none; they are one branch traced twice from two feet of a
+    branch point that touches a nearly circular stretch (within tol of its disk along
+    3e-3 of a blob's boundary: the disk found by jumps at four places on the stretch). The
+    branch that ends at the node's own feet (``stray``: how far its end events' feet are
+    from them; the other one's samples were tangent at a foot merged away, 12 tol
+    unsound), then the one with more samples, is kept."""
+    if _cycles(branches) <= loops - 1:
+        return branches
+    drop: set[int] = set()
+    by_ends: dict[tuple[int, int], list[Branch]] = {}
+    for b in branches:
+        if b.start is not None and b.end is not None and b.start != b.end:
+            by_ends.setdefault((min(b.start, b.end), max(b.start, b.end)), []).append(b)
+    for group in by_ends.values():
+        group = sorted(group, key=lambda b: (round(stray[b.index] / tol, 1), -len(b.points_2d)))
+        for i, keep in enumerate(group):
+            if keep.index in drop:
+                continue
+            for other in group[i + 1 :]:
+                if other.index not in drop and _beside(other, keep):
+                    drop.add(other.index)
+    if not drop:
+        return branches
+    kept = [b for b in branches if b.index not in drop]
+    return [dataclasses.replace(b, index=k) for k, b in enumerate(kept)]
+
+
+def _cycles(branches: list[Branch]) -> int:
+    """Independent cycles of the graph of ``branches``."""
+    parent: dict[int, int] = {}
+
+    def find(i: int) -> int:
+        parent.setdefault(i, i)
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    cycles = 0
+    for b in branches:
+        if b.start is None or b.end is None:
+            cycles += 1
+            continue
+        a, c = find(b.start), find(b.end)
+        if a == c:
+            cycles += 1
+        else:
+            parent[a] = c
+    return cycles
+
+
+def _beside(b: Branch, other: Branch) -> bool:
+    """Whether every point of ``b`` is within half its radius of ``other``'s polyline
+    (densified: at least 64 points)."""
+    q = other.points_2d
+    if len(q) < 64:
+        t = np.linspace(0.0, len(q) - 1.0, 64)
+        i = np.minimum(t.astype(np.int64), len(q) - 2)
+        q = q[i] + (t - i)[:, None] * (q[i + 1] - q[i])
+    d, _ = cKDTree(q).query(b.points_2d)
+    spacing = float(np.linalg.norm(np.diff(q, axis=0), axis=1).max())
+    return bool(np.all(d <= 0.5 * b.radius + spacing))
 
 
 def _drop_stray_ends(nodes: list[Node], branches: list[Branch]) -> tuple[list[Node], list[Branch]]:
