@@ -1648,10 +1648,15 @@ def _exact_pockets(
     for b in branches:
         rows = None
         if b.start is not None and b.end is not None and b.start != b.end:
-            length = np.linalg.norm(np.diff(b.points_2d, axis=0), axis=1).sum()
             first, last = nodes[b.start], nodes[b.end]
             bp, cc = (first, last) if first.kind is NodeKind.BRANCH_POINT else (last, first)
-            if length <= POCKET_LENGTH * tol and degree[bp.index] >= 2:
+            if (
+                bp.kind is NodeKind.BRANCH_POINT
+                and cc.kind is NodeKind.CURVATURE_CENTRE
+                and degree[bp.index] >= 2
+                and np.linalg.norm(np.diff(b.points_2d, axis=0), axis=1).sum()
+                <= POCKET_LENGTH * tol
+            ):
                 rows = pocket_rows(tr.b, bp, cc, tol)
         if rows is None:
             out.append(b)
