@@ -1046,6 +1046,11 @@ def soundness(
             window = 4.0 * math.sqrt(e * sb.diag) + 4.0 * e
             if face is not None and uv is not None:
                 errs[k] = min(e, sb.local_medial_distance(pts[k], int(face), uv, window))
+                if errs[k] > refine_above:  # a feature narrower than the window's first
+                    # step (a revolved flat curvature maximum 1e-3 wide between two feet of
+                    # a branch point: 2 tol along the ray, 0.1 tol in the profile's plane)
+                    narrow = 4.0 * float(errs[k]) + refine_above
+                    errs[k] = min(errs[k], sb.local_medial_distance(pts[k], int(face), uv, narrow))
                 if errs[k] > refine_above:  # a spoke between nearly parallel contacts
                     errs[k] = min(errs[k], sb.local_bisector_distance(pts[k], int(face), uv))
             else:  # a foot on an edge (a reflex edge)

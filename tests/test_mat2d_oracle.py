@@ -274,6 +274,33 @@ def test_moved_flat_maximum_profile_has_one_branch_into_its_pocket(seed: int | N
     check_with_oracles(profile, "moved thin blob profile", n_boundary=400, per_branch=30)
 
 
+@pytest.mark.parametrize("factor", [2.5, 5.0])
+def test_flat_maximum_pocket_is_found_at_a_coarser_tolerance(factor: float) -> None:
+    """The same profile at a coarser tolerance (a full revolution of it takes the solid's
+    diagonal, 2.5 times the profile's): the pocket branch is 4.3 tol long there. A self
+    sample next to the branch point's foot, whose own centre fell within the merge radius
+    of the node, covered that foot although its run's curvature centre is another node:
+    the foot got no event, the pocket branch was lost (the branch point had two
+    branches; the revolved seam bounded two sheets). Its medial points are all within
+    the tolerance of the result, and the oracles pass."""
+    profile = _thin_blob_profile_placed(None)
+    tol = factor * compute(profile).tol
+    res = compute(profile, tol=tol)
+    assert res.tol == tol
+    (bp,) = [n for n in res.branch_points if abs(n.radius - 0.37001) < 1e-4]
+    degree = sum((b.start == bp.index) + (b.end == bp.index) for b in res.graph.branches)
+    assert degree == 3
+    fb = O.FaceBoundary(profile)
+    (cc,) = [n for n in res.nodes if abs(n.radius - 0.36979) < 1e-5]
+    t_cc = cc.footpoints[0].param
+    feet = sorted(f.param for f in bp.footpoints)
+    t0 = max(t for t in feet if t < t_cc)
+    t1 = min(t for t in feet if t > t_cc)
+    truth = np.array([fb.medial_point(0, t) for t in np.linspace(t0, t1, 41)[1:-1]])
+    err = O.ShapeDistance(compound(res)).distances(truth)
+    assert err.max() <= tol, f"the stretch's medial points {err.max() / tol:.2f} tol off"
+
+
 def test_tip_sharper_than_the_tolerance_ends_a_branch() -> None:
     """A fresh random blob (2026-12-02, kept exactly as binary BREP) with a tip of radius
     1.8e-5 (0.7 tol): the branch into it ends at the tip's centre, within the tolerance

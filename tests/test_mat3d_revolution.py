@@ -1218,6 +1218,30 @@ def test_segment_rows_are_exact_medial_points(make: Any) -> None:
             assert np.all(turn >= 0), f"segment of branch {s.branch}: a foot steps back"
 
 
+@pytest.mark.parametrize("angle_deg", [40.0, 360.0])
+def test_revolved_flat_maximum_pocket(angle_deg: float) -> None:
+    """The thin blob's profile (canonical frame, 0.3 from the axis) revolved: at the
+    solid's tolerance (2.5 times the profile's) the branch into the flat maximum was
+    lost, and the full revolution's seam at the branch point bounded two sheets. The
+    pocket's revolved sheet reads 2 tol unsound along the ray (the stretch is nearly a
+    circle about the branch point), 0.1 tol in the profile's plane: the oracle's narrow
+    pass measures it."""
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+
+    reading = recognize(F.read_exact("blob_thin_extrusion.bbrep"))
+    fr = reading.frame
+    rot = np.column_stack([fr.xdir, fr.ydir, fr.zdir])
+    face = F.place(reading.profile, F.Placement(rot.T, -rot.T @ fr.origin))
+    box = Bnd_Box()
+    BRepBndLib.Add_s(face, box)
+    x0, y0, _, _, y1, _ = box.Get()
+    face = F.place(face, F.Placement(np.eye(3), np.array([0.3 - x0, -0.5 * (y0 + y1), 0.0])))
+    solid = revolve(face, math.radians(angle_deg))
+    _, num = mat_and_numbers(solid, f"pocket {angle_deg:g}deg", n_complete=60)
+    assert_oracles(num)  # (the seams bound 3 sheets each)
+
+
 def test_pocket_segment_interpolated_as_the_sheets_do_stays_medial() -> None:
     """The rows of the branch into the flat maximum between two feet of a branch point,
     interpolated by cubics in ``w`` as the sheets are, stay on the medial axis: at 400

@@ -812,11 +812,26 @@ def _complete_feet(
         if len(on):
             on = on[np.argsort(S.s[on])]
             k = np.searchsorted(S.s[on], sq)
+            # the curvature-centre event of each self sample's run (its node's point)
+            runs = sorted(
+                (e for e in evs if e.kind is NodeKind.CURVATURE_CENTRE and e.s_hi >= e.s_lo),
+                key=lambda e: e.s_lo,
+            )
+            run_lo = np.array([e.s_lo for e in runs])
+            run_hi = np.array([e.s_hi for e in runs])
+            run_pt = np.array([e.point for e in runs]).reshape(-1, 2)
             for nb in (on[k % len(on)], on[(k - 1) % len(on)]):
-                # only where that disk is the node's own (a curvature centre ~10 tol from
-                # the branch point, at a flat maximum between two of its feet, swallowed
-                # both feet: the branch between them was lost)
-                near = np.linalg.norm(S.centre[nb] - node_pt[q], axis=1) <= radius
+                # only where that disk is the node's own: the centre of the self sample's
+                # run, else its own centre (a curvature centre ~10 tol from the branch
+                # point, at a flat maximum between two of its feet, swallowed both feet:
+                # the branch between them was lost; at 4 tol, one self sample's centre
+                # was within the merge radius of the node while its run's was not)
+                centre = S.centre[nb].copy()
+                if len(runs):
+                    j = np.searchsorted(run_lo, S.s[nb], side="right") - 1
+                    inside = (j >= 0) & (S.s[nb] <= run_hi[np.maximum(j, 0)])
+                    centre[inside] = run_pt[j[inside]]
+                near = np.linalg.norm(centre - node_pt[q], axis=1) <= radius
                 covered[q] |= S.is_self[nb] & near
     added: list[_Event] = []
     for i in np.nonzero(~covered)[0]:
