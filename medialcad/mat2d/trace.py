@@ -1461,7 +1461,10 @@ def _fill_empty(tr: _Tracer, kept: list[_Interval], intervals: list[_Interval]) 
       branch of its own (a flat curvature maximum 0.0012 wide beside a blob's branch
       point, between two samples: its branch, ~10 tol long to the centre of curvature,
       was missing, and a thin extrusion's mid sheet did not close); the samples there
-      find its events, or are the node's own disk (an arc of it) and add nothing."""
+      find its events, or are the node's own disk (an arc of it) and add nothing;
+    - intervals between distinct nodes that were not kept: the two halves of such a
+      stretch, from the branch point to the curvature centre and back, are each
+      other's twins and empty (taking kept intervals only lost that branch again)."""
     loops: list[int] = []
     ss: list[float] = []
     for iv in (*kept, *intervals):

@@ -103,6 +103,9 @@ def _side_parameter(rows: FloatArray, fallback: FloatArray) -> tuple[FloatArray,
             keep[-1] = n - 1
         else:
             keep.append(n - 1)
+        # (and the row before it must not sit on it: no repeated parameter)
+        while len(keep) > 2 and np.linalg.norm(rows[keep[-1]] - rows[keep[-2]]) <= gap:
+            del keep[-2]
     idx = np.array(keep, dtype=np.int64)
     w = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(rows[idx], axis=0), axis=1))])
     return w / w[-1], idx
