@@ -234,6 +234,12 @@ class SolidBoundary:
         self.edge_margin = edge_margin if edge_margin is not None else 1e-3 * self.diag
         tols = [BRep_Tool.Tolerance_s(TopoDS.Vertex_s(v)) for v in _iter(self.solid, TopAbs_VERTEX)]
         self.class_tol = max(1e-9 * self.diag, *tols)
+        #: the B-rep's own tolerance (its largest vertex or edge tolerance): where its
+        #: faces and edges are only that close to each other, so is any answer about it
+        edge_tols = [
+            BRep_Tool.Tolerance_s(TopoDS.Edge_s(e)) for e in _iter(self.solid, TopAbs_EDGE)
+        ]
+        self.brep_tol = max(0.0, *tols, *edge_tols)
         self._dss = ShapeDistance(self.shell)
         self._build_extrema()
         self._classifier = BRepClass3d_SolidClassifier(self.solid)

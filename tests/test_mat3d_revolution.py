@@ -750,6 +750,7 @@ class Numbers:
     valid: bool = False
     free_off: list[tuple[float, str]] = field(default_factory=list)  # (distance, role)
     thin_seams: int = 0  # named seams bounding fewer than 3 sheets
+    brep_tol: float = 0.0  # the solid's own tolerance (largest vertex or edge tolerance)
     counts: dict[str, int] = field(default_factory=dict)
     seconds: dict[str, float] = field(default_factory=dict)
 
@@ -763,7 +764,7 @@ class Numbers:
             f" valid {self.valid} | free-off {len(self.free_off)} thin {self.thin_seams}"
             f" | sheets {c.get('sheets')} seams {c.get('seams')} junctions {c.get('junctions')}"
             f" skeletal {c.get('skeletal_edges')} | mat {self.seconds.get('mat', 0):.1f}s"
-            f" oracle {self.seconds.get('oracle', 0):.1f}s"
+            f" oracle {self.seconds.get('oracle', 0):.1f}s | B-rep tol {self.brep_tol / d:.0e}"
         )
 
 
@@ -783,7 +784,7 @@ def oracle_numbers(
     t0 = time.perf_counter()
     sb = O.SolidBoundary(solid)
     rng = np.random.default_rng(seed)
-    num = Numbers(label, sb.diag, float(result.tol), counts=result.counts())
+    num = Numbers(label, sb.diag, float(result.tol), counts=result.counts(), brep_tol=sb.brep_tol)
     sp, sr, roles = sheet_samples(result, per_face)
     cp, cr = curve_samples(list(result.seams) + list(result.skeletal_edges), 4)
     jp = np.array([j.point for j in result.junctions]).reshape(-1, 3)
@@ -840,12 +841,16 @@ def assert_oracles(num: Numbers, seams: bool = True) -> None:
     named seams and the seams bounding fewer than 3 sheets (once a known bug of random
     fillets in full revolutions, fixed; see :func:`test_fillet_centres_are_skeletal_edges`)."""
     d = num.diag
+    # the answer is exact to tol for the boundary it was computed from; the solid's faces
+    # and edges themselves agree only to its own tolerance (a fuzzed revolution's revolved
+    # face stops 4e-5 short of its profile edge's end, vertex tolerance 6.2e-5 = 2.1 tol)
+    tol = num.tol + num.brep_tol
     assert num.outside == 0, f"{num.label}: {num.outside} samples outside the solid"
-    assert num.soundness <= num.tol, f"{num.label}: soundness {num.soundness / d:.2e} diag"
-    assert num.radius <= num.tol, f"{num.label}: radius error {num.radius / d:.2e} diag"
+    assert num.soundness <= tol, f"{num.label}: soundness {num.soundness / d:.2e} diag"
+    assert num.radius <= tol, f"{num.label}: radius error {num.radius / d:.2e} diag"
     rm = num.radius_mid
-    assert rm <= num.tol, f"{num.label}: radius error on mid sheets {rm / d:.2e} diag"
-    assert num.completeness <= num.tol, f"{num.label}: completeness {num.completeness / d:.2e}"
+    assert rm <= tol, f"{num.label}: radius error on mid sheets {rm / d:.2e} diag"
+    assert num.completeness <= tol, f"{num.label}: completeness {num.completeness / d:.2e}"
     assert num.components == 1, f"{num.label}: {num.components} components"
     assert num.euler == num.solid_euler, f"{num.label}: chi {num.euler} != {num.solid_euler}"
     assert num.valid, f"{num.label}: compound not valid"
@@ -1324,22 +1329,19 @@ def test_random_revolution_at_a_critical_angle(case: tuple[Any, float, float], s
     _check_random(face, margin, angle, seed, "critical")
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="known (fuzz 2026-12-02, also on the engine of 461c450): the radius carried by "
-    "cap and revolved sheets of a 13-degree revolution at a critical angle is up to 1.42 tol "
-    "off the distance to the boundary at the end of a segment by a convex corner (r < 1e-4, "
-    "u = 0.9993), while its profile's 2D MAT is within 0.17 tol",
-)
 def test_critical_13_degree_revolution_carries_its_radius() -> None:
     """A fresh random revolution at a critical angle (Theta = 2 asin(r/x) of one of its
-    profile's medial points, 13.08 degrees; kept exactly as binary BREP). Every oracle
-    passes but the radius: samples of one revolved sheet and its two cap sheets, at the
-    end of their segment next to a convex corner (radius 4e-5..9e-5, u = 0.9993), carry
-    radii up to 1.42 tol off their distance to the boundary (soundness 0.95 tol,
-    completeness 0.6 tol)."""
+    profile's medial points, 13.08 degrees; kept exactly as binary BREP). Samples of one
+    revolved sheet and its two cap sheets, next to a convex corner, carry radii 1.35 tol
+    (3.9e-5) above their distance to the solid, while in the profile's plane the same
+    points are medial with their radius exact (0.00 tol): the solid's revolved cylinder
+    stops 4.0e-5 short of its profile edge's end (vertex and edge tolerances up to 6.2e-5,
+    2.1 tol). The MAT is exact to tol for the profile; the oracles allow the solid's own
+    tolerance on top."""
     shape = F.read_exact("revolution_critical_13deg_radius.bbrep")
     _, num = mat_and_numbers(shape, "critical 13deg", n_complete=60)
+    assert num.brep_tol > num.tol  # the case: a B-rep looser than the tolerance
+    assert num.radius > num.tol  # (measured against the solid itself)
     assert_oracles(num)
 
 
