@@ -1542,7 +1542,12 @@ def _assemble(
                     feet.append(Footpoint(el, par, np.asarray(fp, dtype=float)))
                     xy.append((x, y))
         nodes.append(Node(ni, kind, pt, frame.to_3d(pt), r, tuple(feet)))
-    nodes = _one_contact(boundary, nodes, events, tol)
+    degree = np.zeros(n_nodes, dtype=np.int64)
+    for iv in kept:
+        for end in (iv.start, iv.end):
+            if end is not None:
+                degree[end.node] += 1
+    nodes = _one_contact(boundary, nodes, events, degree, tol)
     branches: list[Branch] = []
     stray: list[float] = []  # how far each branch's end events' own feet are from the node's
     for iv in kept:
@@ -1605,13 +1610,15 @@ def _assemble(
 
 
 def _one_contact(
-    boundary: Boundary, nodes: list[Node], events: list[_Event], tol: float
+    boundary: Boundary, nodes: list[Node], events: list[_Event], degree: IntArray, tol: float
 ) -> list[Node]:
     """A branch point's feet next to each other on one edge, with the edge between them
     within tol of its disk and no other node's foot between them, are one contact (the
     disk of a branch point beside a nearly circular stretch, found by jumps at several
     places along it): the foot most of its events name is kept. Branches then end on
-    the same feet (a second pair 7e-5 apart gave the pocket branch there twice, a cycle)."""
+    the same feet (a second pair 7e-5 apart gave the pocket branch there twice, a cycle).
+    A branch point that ends a single branch (``degree`` 1: a flat arc seen as many feet,
+    whose fan the 3D sheets are built from) keeps all its feet."""
     by_el: dict[int, list[float]] = {}
     for nd in nodes:
         for f in nd.footpoints:
@@ -1622,7 +1629,7 @@ def _one_contact(
             votes[(int(el), float(par))] = votes.get((int(el), float(par)), 0) + 1
     out: list[Node] = []
     for nd in nodes:
-        if nd.kind is not NodeKind.BRANCH_POINT or len(nd.footpoints) <= 3:
+        if nd.kind is not NodeKind.BRANCH_POINT or len(nd.footpoints) <= 3 or degree[nd.index] < 2:
             out.append(nd)
             continue
         drop: set[int] = set()
