@@ -1345,6 +1345,18 @@ def test_critical_13_degree_revolution_carries_its_radius() -> None:
     assert_oracles(num)
 
 
+def test_critical_28_degree_revolution_sheet_stays_on_its_surface() -> None:
+    """A fresh random revolution at a critical angle (28.4 degrees; fuzz run of
+    2026-12-03, kept exactly as binary BREP): a straight branch from a level end (where
+    the revolved sheet's angular span is 0) to a convex corner had 4 rows, and the sheet's
+    points, cubic across rows whose angular spans change fast, cut inside their circles:
+    1.33 tol unsound, radius 1.9 tol off. Rows are added where they leave the surface of
+    revolution by more than 0.05 tol."""
+    shape = F.read_exact("revolution_critical_28deg_level_rows.bbrep")
+    _, num = mat_and_numbers(shape, "critical 28deg", n_complete=60)
+    assert_oracles(num)
+
+
 def test_sheet_of_a_tiny_fillet_spoke_is_sound() -> None:
     """A fresh random revolution (2026-12-02, 27 degrees, kept exactly as binary BREP)
     whose profile has a fillet of radius 0.2 and 7e-5 long rounding a corner that turns

@@ -23,7 +23,7 @@ samples of their common side, hence one edge.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -118,6 +118,8 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
 
     level = g_level if mid and mat2d.rmax > 0 else (g_axis if reading.touches_axis else None)
     segments = split_branches(graph, boundary, level)
+    if not full:
+        segments = [_angular_rows(s, cn, theta, tol) for s in segments]
     # one angular sampling for all patches, so that shared sides get identical samples
     xs = [np.abs(cn.xy(s.centre)[:, 0]).max() for s in segments] + [1e-300]
     xf = [np.abs(cn.xy(np.vstack([s.foot_a, s.foot_b]))[:, 0]).max() for s in segments] + [1e-300]
@@ -222,6 +224,47 @@ def _end_role(s: Segment, which: int) -> str | None:
         }[end.node_kind]
         if end.node_kind is not None
         else None
+    )
+
+
+def _angular_rows(s: Segment, cn: _Canon, theta: float, tol: float) -> Segment:
+    """The segment with rows added (from its own interpolant, within 0.1 tol of exact)
+    where the revolved sheet's points, cubic across rows, leave the surface of revolution
+    by more than 0.05 tol.
+
+    A row of a partial revolution's sheet spans the angles ``asin(r/x)`` to ``theta -
+    asin(r/x)``, which change fast next to a level end (the span is 0 there): across 4
+    rows of a straight branch from a level end to a convex corner, the interpolated
+    points cut inside their circles by 1.0 tol (a 28-degree revolution at a critical
+    angle). The caps share the rows, so their rims stay sewn to the sheet."""
+    if s.single or len(s.w) < 2:
+        return s
+    v = np.array([0.0, 0.25, 0.5, 0.75, 1.0])
+
+    def points(c: FloatArray, r: FloatArray) -> FloatArray:
+        xy = cn.xy(c)
+        phi0 = np.arcsin(np.clip(r / np.maximum(xy[:, 0], 1e-300), 0.0, 1.0))
+        phi = phi0[:, None] + v[None, :] * np.maximum(theta - 2 * phi0, 0.0)[:, None]
+        return cn.model(np.broadcast_to(xy[:, None, :], (len(c), len(v), 2)), phi)
+
+    w, rows = s.w, np.column_stack([s.centre, s.radius, s.foot_a, s.foot_b])
+    for _ in range(10):
+        k = min(3, len(w) - 1)
+        wm = 0.5 * (w[1:] + w[:-1])
+        mid = make_interp_spline(w, rows, k=k)(wm)
+        fit = make_interp_spline(w, points(rows[:, :2], rows[:, 2]), k=k, axis=0)(wm)
+        exact = points(mid[:, :2], mid[:, 2])
+        bad = np.linalg.norm(fit - exact, axis=2).max(axis=1) > 0.05 * tol
+        bad &= np.diff(w) > 1e-6
+        if not np.any(bad) or len(w) > 400:
+            break
+        idx = np.nonzero(bad)[0]
+        w = np.insert(w, idx + 1, wm[idx])
+        rows = np.insert(rows, idx + 1, mid[idx], axis=0)
+    if len(w) == len(s.w):
+        return s
+    return replace(
+        s, w=w, centre=rows[:, :2], radius=rows[:, 2], foot_a=rows[:, 3:5], foot_b=rows[:, 5:7]
     )
 
 
