@@ -22,6 +22,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -1033,10 +1034,20 @@ def _check_topology(graph: MedialGraph, loops: int) -> None:
     independent cycle per hole. A graph that is not was traced wrong somewhere (seen at
     nearly flat convex corners at both ends of a fillet, below the sample spacing): an
     error, not a wrong answer."""
-    n = len(graph.nodes)
-    parent = list(range(n))
-    components, cycles = n, 0
-    for b in graph.branches:
+    components, cycles = _rank(len(graph.nodes), graph.branches)
+    if (components, cycles) != (1, loops - 1):
+        raise ComputationError(
+            f"the medial graph has {components} components and {cycles} cycles, not 1 and "
+            f"{loops - 1}: it was traced wrong (nearly flat corners below the sample spacing?)"
+        )
+
+
+def _rank(n_nodes: int, branches: Sequence[Branch]) -> tuple[int, int]:
+    """``(connected components, independent cycles)`` of the graph of ``n_nodes`` nodes
+    and ``branches``; a closed branch is a component and a cycle of its own."""
+    parent = list(range(n_nodes))
+    components, cycles = n_nodes, 0
+    for b in branches:
         if b.start is None or b.end is None:  # a closed loop of its own
             components += 1
             cycles += 1
@@ -1047,11 +1058,7 @@ def _check_topology(graph: MedialGraph, loops: int) -> None:
         else:
             parent[a] = c
             components -= 1
-    if (components, cycles) != (1, loops - 1):
-        raise ComputationError(
-            f"the medial graph has {components} components and {cycles} cycles, not 1 and "
-            f"{loops - 1}: it was traced wrong (nearly flat corners below the sample spacing?)"
-        )
+    return components, cycles
 
 
 def _twins(
@@ -1603,7 +1610,7 @@ def _assemble(
                 spline,
             )
         )
-    branches = _drop_parallel(branches, stray, len(tr.L), tol)
+    branches = _drop_parallel(len(nodes), branches, stray, len(tr.L), tol)
     nodes, branches = _drop_stray_ends(nodes, branches)
     branches = _exact_pockets(tr, nodes, branches, tol)
     return MedialGraph(frame, tol, tuple(nodes), tuple(branches), elements)
@@ -1720,7 +1727,7 @@ def _stray(ev: _Event, node: Node) -> float:
 
 
 def _drop_parallel(
-    branches: list[Branch], stray: list[float], loops: int, tol: float
+    n_nodes: int, branches: list[Branch], stray: list[float], loops: int, tol: float
 ) -> list[Branch]:
     """Drop one of two branches joining the same two nodes along the same path, where the
     graph has more cycles than the face has holes.
@@ -1733,7 +1740,7 @@ def _drop_parallel(
     branch that ends at the node's own feet (``stray``: how far its end events' feet are
     from them; the other one's samples were tangent at a foot merged away, 12 tol
     unsound), then the one with more samples, is kept."""
-    if _cycles(branches) <= loops - 1:
+    if _rank(n_nodes, branches)[1] <= loops - 1:
         return branches
     drop: set[int] = set()
     by_ends: dict[tuple[int, int], list[Branch]] = {}
@@ -1752,30 +1759,6 @@ def _drop_parallel(
         return branches
     kept = [b for b in branches if b.index not in drop]
     return [dataclasses.replace(b, index=k) for k, b in enumerate(kept)]
-
-
-def _cycles(branches: list[Branch]) -> int:
-    """Independent cycles of the graph of ``branches``."""
-    parent: dict[int, int] = {}
-
-    def find(i: int) -> int:
-        parent.setdefault(i, i)
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    cycles = 0
-    for b in branches:
-        if b.start is None or b.end is None:
-            cycles += 1
-            continue
-        a, c = find(b.start), find(b.end)
-        if a == c:
-            cycles += 1
-        else:
-            parent[a] = c
-    return cycles
 
 
 def _beside(b: Branch, other: Branch) -> bool:
