@@ -71,8 +71,8 @@ def cylinder(r: float, h: float) -> TopoDS_Solid:
     return prism(F.circle(r), h)
 
 
-def elliptic_prism(a: float, b: float, length: float) -> TopoDS_Solid:
-    return prism(F.ellipse(a, b), length)
+def elliptic_prism(a: float, b: float, length: float, seam: float | None = None) -> TopoDS_Solid:
+    return prism(F.ellipse(a, b, seam), length)
 
 
 def tube(ri: float, ro: float, h: float) -> TopoDS_Solid:

@@ -25,7 +25,7 @@ from hypothesis import assume
 from hypothesis import strategies as st
 from numpy.typing import ArrayLike, NDArray
 from OCP.BinTools import BinTools
-from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_Transform
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepTools import BRepTools
 from OCP.gp import gp_Trsf
@@ -249,10 +249,19 @@ def square(a: float = 1.0) -> TopoDS_Face:
     return rectangle(a, a)
 
 
-def ellipse(a: float = 3.0, b: float = 1.0) -> TopoDS_Face:
-    """The ellipse with semi-axes ``a`` (along x) and ``b``, centred at the origin."""
-    edge = cq.Edge.makeEllipse(a, b, cq.Vector(0, 0, 0), cq.Vector(0, 0, 1), cq.Vector(1, 0, 0))
-    return _face(cq.Wire.assembleEdges([edge]))
+def ellipse(a: float = 3.0, b: float = 1.0, seam: float | None = None) -> TopoDS_Face:
+    """The ellipse with semi-axes ``a`` (along x) and ``b``, centred at the origin; with
+    ``seam``, one closed edge whose ends sit at that parameter (angle from +x)."""
+    if seam is None:
+        edge = cq.Edge.makeEllipse(a, b, cq.Vector(0, 0, 0), cq.Vector(0, 0, 1), cq.Vector(1, 0, 0))
+        return _face(cq.Wire.assembleEdges([edge]))
+    from OCP.Geom import Geom_Ellipse
+    from OCP.gp import gp_Ax2, gp_Dir, gp_Elips, gp_Pnt
+
+    ax = gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0))
+    curve = Geom_Ellipse(gp_Elips(ax, a, b))
+    closed = cq.Edge(BRepBuilderAPI_MakeEdge(curve, seam, seam + 2 * math.pi).Edge())
+    return _face(cq.Wire.assembleEdges([closed]))
 
 
 def circle(r: float = 1.0) -> TopoDS_Face:

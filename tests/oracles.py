@@ -685,9 +685,15 @@ class FaceBoundary:
         c = self.curves[i]
         t0, t1 = c.FirstParameter(), c.LastParameter()
         speed = max(float(np.linalg.norm(self._tangent(i, t)[1])), 1e-300)
-        a, b = max(t0, t - window / speed), min(t1, t + window / speed)
+        a, b = t - window / speed, t + window / speed
+        # a closed edge (a periodic B-spline's loop) goes on across its seam
+        closed = bool(c.IsClosed()) and b - a < t1 - t0
+        if not closed:
+            a, b = max(t0, a), min(t1, b)
 
         def f(tt: float) -> float:
+            if closed:
+                tt = t0 + (tt - t0) % (t1 - t0)
             return float(np.linalg.norm(p - self.medial_point(i, tt)))
 
         return _local_min(f, a, b)

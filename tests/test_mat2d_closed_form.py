@@ -117,6 +117,40 @@ def test_ellipse(pl: F.Placement) -> None:
     assert cycle_rank(res) == (1, 0)
 
 
+@pytest.mark.parametrize(
+    "seam", [0.5 * math.pi, 1.5 * math.pi, 0.65], ids=["top", "bottom", "0.65"]
+)
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_ellipse_with_its_seam_anywhere(pl: F.Placement, seam: float) -> None:
+    """The seam of a closed edge is a point of the boundary like any other. With the seam
+    at an end of the minor axis, the disk centred at the origin touches the far end and
+    the seam itself: a partner resting exactly on the seam was dropped as if it were a
+    joint with another edge (the sample then took its own osculating disk, r = 9, and
+    the axis gained a curvature centre far outside the ellipse)."""
+    a, b = 3.0, 1.0
+    res, _, _ = check_against(F.place(F.ellipse(a, b, seam), pl), pl, ellipse_cf(a, b))
+    assert kinds(res) == Counter({CC: 2})
+    assert len(res.branches) == 1
+    assert cycle_rank(res) == (1, 0)
+
+
+def test_partner_exactly_on_the_seam_of_a_closed_edge() -> None:
+    """The medial map at the end of the minor axis opposite the seam: its partner is the
+    seam point, its disk the one of radius ``b`` about the centre."""
+    from medialcad.api import ANGLE_TOL
+    from medialcad.mat2d.boundary import build_boundary
+    from medialcad.mat2d.medial_map import build_candidates, evaluate
+    from medialcad.occ.face2d import planar_face
+
+    pf = planar_face(F.ellipse(3.0, 1.0, 0.5 * math.pi))
+    boundary = build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=ANGLE_TOL)
+    half = 0.5 * boundary.loop_lengths[0]
+    s = half * (1 + np.array([0.0, 1e-9, -1e-9, 1e-6, -1e-6]))
+    m = evaluate(boundary, build_candidates(boundary, 0.05), np.zeros(5, np.int64), s, 1e-6)
+    assert np.allclose(m.radius, 1.0, atol=1e-6)
+    assert np.allclose(pf.frame.to_3d(m.centre), 0.0, atol=1e-5)
+
+
 @pytest.mark.parametrize("pl", PLACEMENTS)
 def test_annulus(pl: F.Placement) -> None:
     ri, ro = 1.0, 2.0

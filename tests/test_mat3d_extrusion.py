@@ -60,6 +60,9 @@ CLOSED_FORMS = {
     "cylinder_long": lambda: M.cylinder(R_LONG, H_LONG),
     "cylinder_short": lambda: M.cylinder(R_SHORT, H_SHORT),
     "ellipse": lambda: M.elliptic_prism(EA, EB, EL),
+    # its profile one closed edge with the seam at an end of the minor axis: the partner
+    # of the other end is the seam point itself
+    "ellipse_minor_seam": lambda: M.elliptic_prism(EA, EB, EL, 0.5 * math.pi),
     "tube_tall": lambda: M.tube(*TUBE_TALL),
     "tube_flat": lambda: M.tube(*TUBE_FLAT),
 }
@@ -295,9 +298,10 @@ def test_cylinder_short_is_a_mid_disk_and_two_frusta(mats: Cache) -> None:
     assert not r.skeletal_edges and not r.junctions
 
 
-def test_ellipse_has_skeletal_edges_at_the_curvature_centres(mats: Cache) -> None:
+@pytest.mark.parametrize("name", ["ellipse", "ellipse_minor_seam"])
+def test_ellipse_has_skeletal_edges_at_the_curvature_centres(mats: Cache, name: str) -> None:
     a, b, L = EA, EB, EL
-    r = mats("ellipse").result
+    r = mats(name).result
     tol = r.tol
     c, rho = (a * a - b * b) / a, b * b / a
     assert len(r.skeletal_edges) == 2, f"{len(r.skeletal_edges)} skeletal edges"

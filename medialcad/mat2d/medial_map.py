@@ -708,8 +708,11 @@ def _refine_element(
     at_end = (np.abs(t - e.piece.t0) < 1e-12 * span) | (np.abs(t - e.piece.t1) < 1e-12 * span)
     fv = np.where(at_end, fv * (1 + 1e-12) + pen, fv)
     lo_t, hi_t = min(e.piece.t0, e.piece.t1), max(e.piece.t0, e.piece.t1)
-    end_lo = C.reflex_end[ei, 0] | (C.touch[ei, 0] == own[rr])
-    end_hi = C.reflex_end[ei, 1] | (C.touch[ei, 1] == own[rr])
+    # a minimum clamped at the end joined to the sample's own element is that joint (the
+    # own element's trivial root); a closed element's seam joins it to itself, a point
+    # inside the curve like any other (a C1 seam's curvature jump: partners rest on it)
+    end_lo = C.reflex_end[ei, 0] | ((C.touch[ei, 0] == own[rr]) & (own[rr] != ei))
+    end_hi = C.reflex_end[ei, 1] | ((C.touch[ei, 1] == own[rr]) & (own[rr] != ei))
     at_reflex = (end_lo & (np.abs(t - lo_t) < 1e-12 * span)) | (
         end_hi & (np.abs(t - hi_t) < 1e-12 * span)
     )
