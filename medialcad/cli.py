@@ -363,11 +363,23 @@ def _solve_solid(
         "counts": mat.counts(),
         "rmax": float(mat.rmax),
         "tol": float(mat.tol),
-        "error_bound": float(mat.tol),
+        "input_tolerance": float(mat.input_tolerance),
+        "error_bound": float(mat.error_bound),
         "timings": timings,
         "seconds": round(seconds, 4),
         "product": solid_product_name(index),
     }
+    if mat.input_tolerance > mat.tol:
+        log.warning(
+            "solid %d of %d: its B-rep is only accurate to %.3g, more than tol %.3g: the "
+            "medial axis is exact to tol for the recognised profile, within %.3g of the "
+            "solid's faces",
+            index,
+            count,
+            mat.input_tolerance,
+            mat.tol,
+            mat.error_bound,
+        )
     if thickness:
         t1 = time.perf_counter()
         try:
@@ -611,7 +623,10 @@ def main(argv: list[str] | None = None) -> int:
 
         return batch_main(argv[1:])
     args = _parser().parse_args(argv)
-    logging.basicConfig(level=logging.DEBUG if args.debug else logging.WARNING)
+    logging.basicConfig(
+        level=logging.DEBUG if args.debug else logging.WARNING,
+        format=logging.BASIC_FORMAT if args.debug else "medialcad: %(levelname)s: %(message)s",
+    )
     try:
         return _run(args)
     except KeyboardInterrupt:

@@ -48,6 +48,8 @@ class Extrusion:
             (length units).
         alternative: the revolution reading of the same solid, if there is one.
         solid: the ``TopoDS_Solid`` it describes; diag: its bounding-box diagonal.
+        brep_tolerance: the largest tolerance the B-rep records on its vertices, edges
+            and faces: how far apart its faces may lie where they meet.
     """
 
     direction: FloatArray
@@ -58,6 +60,7 @@ class Extrusion:
     alternative: Revolution | None = None
     solid: Any = None
     diag: float = 0.0
+    brep_tolerance: float = 0.0
 
     kind = "extrusion"
 
@@ -79,6 +82,8 @@ class Revolution:
         tolerance: the largest deviation from an exact revolution measured on the B-rep.
         alternative: the extrusion reading of the same solid, if there is one.
         solid: the ``TopoDS_Solid`` it describes; diag: its bounding-box diagonal.
+        brep_tolerance: the largest tolerance the B-rep records on its vertices, edges
+            and faces: how far apart its faces may lie where they meet.
     """
 
     axis_point: FloatArray
@@ -91,6 +96,7 @@ class Revolution:
     alternative: Extrusion | None = None
     solid: Any = None
     diag: float = 0.0
+    brep_tolerance: float = 0.0
 
     kind = "revolution"
 

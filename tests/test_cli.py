@@ -128,7 +128,10 @@ def test_box_step_report_and_radius_sidecar(tmp_path: Path) -> None:
     }
     assert counts["branch_points"] == 2 and counts["junctions"] == 4
     assert len(faces(shape)) == counts["sheets"]
-    assert solid["rmax"] > 0 and solid["tol"] > 0 and solid["error_bound"] == solid["tol"]
+    assert solid["rmax"] > 0 and solid["tol"] > 0
+    # a clean B-rep: its own tolerance (1e-7) is far below tol, and is in the bound
+    assert 0 < solid["input_tolerance"] < 1e-3 * solid["tol"]
+    assert solid["error_bound"] == pytest.approx(solid["tol"] + solid["input_tolerance"])
     assert {"recognition", "total"} <= set(solid["timings"])
 
     radius = json.loads((out.parent / "box.mat.radius.json").read_text())  # the default
@@ -374,3 +377,24 @@ def test_png_and_html_share_one_mesh_when_it_fits_the_picture(
     # the bracket's viewer mesh is small enough for the picture; the gear's is not
     assert len(budgets) == meshes
     assert budgets[-1] == (plot3d.PNG_MAX_TRIANGLES if meshes == 2 else budgets[0])
+
+
+def test_a_brep_looser_than_tol_is_warned_about_and_bounded(tmp_path: Path) -> None:
+    """A fuzzed 13-degree revolution whose revolved face stops 4e-5 short of its profile
+    edge: OCC records vertex and edge tolerances up to 6.2e-5, twice tol. The medial axis
+    is exact to tol for the recognised profile; the report's error bound adds the B-rep's
+    own tolerance, and one warning line says so."""
+    from OCP.BRepTools import BRepTools
+
+    from tests import faces as F
+
+    src = tmp_path / "critical.brep"
+    assert BRepTools.Write_s(F.read_exact("revolution_critical_13deg_radius.bbrep"), str(src))
+    out, rep = tmp_path / "critical.mat.step", tmp_path / "critical.json"
+    proc = _cli(src, "-o", out, "--report", rep, "--no-thickness", "--no-radius")
+    assert proc.returncode == 0, proc.stderr
+    (line,) = proc.stderr.strip().splitlines()
+    assert line.startswith("medialcad: WARNING: solid 1 of 1: its B-rep is only accurate to 6.2")
+    (solid,) = json.loads(rep.read_text())["solids"]
+    assert solid["input_tolerance"] == pytest.approx(6.2e-5, rel=0.02)
+    assert solid["error_bound"] == pytest.approx(solid["tol"] + solid["input_tolerance"])

@@ -673,15 +673,27 @@ def _refine_element(
     t0 = C.param[cj]
     lo2, hi2 = np.minimum(lo, hi), np.maximum(lo, hi)
     is_own = own[rr] == ei
+    period = abs(e.piece.t1 - e.piece.t0)
+    speed = np.zeros(len(rr))
     if np.any(is_own):
-        # never let the solve fall onto the trivial root q = b on the own curve: the
-        # partner of a sample that is not near-self lies at least ``near`` away
+        speed = np.linalg.norm(e.piece.curve.derivs(own_param[rr])[1], axis=1)
+
+    def off_own(t0: FloatArray, lo2: FloatArray, hi2: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Never let the solve fall onto the trivial root q = b on the own curve: the
+        partner of a sample that is not near-self lies at least ``near`` away (on a
+        closed edge, the own point's copy nearest the bracket: across the seam)."""
+        if not np.any(is_own):
+            return lo2, hi2
         tb = own_param[rr]
-        speed = np.linalg.norm(e.piece.curve.derivs(tb)[1], axis=1)
+        if closed:
+            tb = tb + period * np.round((t0 - tb) / period)
         cut = np.minimum(0.5 * near[rr] / np.maximum(speed, 1e-300), 0.5 * np.abs(t0 - tb))
         inside = is_own & (lo2 < tb + cut) & (tb - cut < hi2)
         lo2 = np.where(inside & (t0 > tb), np.maximum(lo2, tb + cut), lo2)
         hi2 = np.where(inside & (t0 < tb), np.minimum(hi2, tb - cut), hi2)
+        return lo2, hi2
+
+    lo2, hi2 = off_own(t0, lo2, hi2)
     t, fv = _refine_on_edge(e, b[rr], n[rr], t0, lo2, hi2)
     if closed:
         # a closed edge: a minimum at its seam may lie on the other side of it
@@ -690,13 +702,13 @@ def _refine_element(
             other = np.where(cj[at_seam] == first, last, first)
             olo = C.param[np.where(other == first, first, last - 1)]
             ohi = C.param[np.where(other == first, first + 1, last)]
+            ot0 = np.zeros(len(rr))
+            ot0[at_seam] = C.param[other]
+            blo, bhi = np.array(lo2), np.array(hi2)
+            blo[at_seam], bhi[at_seam] = np.minimum(olo, ohi), np.maximum(olo, ohi)
+            blo, bhi = off_own(ot0, blo, bhi)
             t_b, f_b = _refine_on_edge(
-                e,
-                b[rr[at_seam]],
-                n[rr[at_seam]],
-                C.param[other],
-                np.minimum(olo, ohi),
-                np.maximum(olo, ohi),
+                e, b[rr[at_seam]], n[rr[at_seam]], ot0[at_seam], blo[at_seam], bhi[at_seam]
             )
             better = f_b < fv[at_seam]
             t[at_seam[better]] = t_b[better]
@@ -718,7 +730,10 @@ def _refine_element(
     )
     fv = np.where(at_reflex, np.inf, fv)
     if np.any(is_own):
-        fv = np.where(is_own & (np.abs(t - own_param[rr]) < 1e-9 * span), np.inf, fv)
+        gap = np.abs(t - own_param[rr])
+        if closed:
+            gap = np.minimum(gap, np.abs(period - gap))
+        fv = np.where(is_own & (gap < 1e-9 * span), np.inf, fv)
     order = np.lexsort((fv, rr))
     head = np.ones(len(order), dtype=bool)
     head[1:] = rr[order][1:] != rr[order][:-1]

@@ -174,6 +174,19 @@ class MedialAxis3D:
         return self.compound
 
     @property
+    def input_tolerance(self) -> float:
+        """How far the solid's own faces may lie from the recognised profile swept: the
+        B-rep's largest recorded tolerance, or the recognition's measured deviation."""
+        rec = self.recognition
+        return max(float(getattr(rec, "brep_tolerance", 0.0)), float(rec.tolerance))
+
+    @property
+    def error_bound(self) -> float:
+        """Bound on the distance of the complex (and of its radius) from the exact MAT of
+        the solid's faces: ``tol`` for the recognised profile plus :attr:`input_tolerance`."""
+        return self.tol + self.input_tolerance
+
+    @property
     def rmax(self) -> float:
         """Largest radius on the complex (the largest inscribed ball of the solid)."""
         vals = [0.0]

@@ -467,12 +467,11 @@ def recognize_solid(obj: Any, tol: float | None = None) -> SolidKind:
     reasons: list[str] = []
     ext = _recognize_extrusion(solid, data, lin_tol, ang_tol, volume, reasons)
     rev = _recognize_revolution(solid, data, lin_tol, ang_tol, volume, diag, reasons)
+    own = {"solid": solid, "diag": diag, "brep_tolerance": float(shape_tol)}
     if ext is not None:
-        return replace(
-            ext, alternative=rev and replace(rev, solid=solid, diag=diag), solid=solid, diag=diag
-        )
+        return replace(ext, alternative=rev and replace(rev, **own), **own)
     if rev is not None:
-        return replace(rev, solid=solid, diag=diag)
+        return replace(rev, **own)
     invalid = ""
     with occ_guard("checking the solid"):
         if not BRepCheck_Analyzer(solid).IsValid():
