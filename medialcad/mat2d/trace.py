@@ -109,44 +109,6 @@ def _initial_samples(boundary: Boundary, spacing: float) -> tuple[IntArray, Floa
     return np.concatenate(loops).astype(np.int64), np.concatenate(ss)
 
 
-def _curvature_maxima(boundary: Boundary) -> tuple[IntArray, FloatArray]:
-    """Every local maximum of the (convex) curvature inside the free-form edges:
-    ``(loop, s)``. A grid of 257 parameters per edge, a grid of 65 across the bracket of
-    each of its maxima, then golden-section search between the neighbours of the best.
-    (A curvature jump at a joint or a seam is an end the events find themselves.)"""
-    loops: list[int] = []
-    out: list[float] = []
-    for e in boundary.elements:
-        if e.piece is None or e.piece.curve.constant_curvature is not None:
-            continue
-        t = np.linspace(e.piece.t0, e.piece.t1, 257)
-        k = boundary.frame_at(e, t)[2]
-        left = np.concatenate([[-np.inf], k[:-1]])
-        right = np.concatenate([k[1:], [-np.inf]])
-        j = np.nonzero((k > 0) & (k >= left) & (k >= right) & ((k > left) | (k > right)))[0]
-        j = j[(j > 0) & (j < len(t) - 1)]
-        if len(j) == 0:
-            continue
-        lo, hi = t[j - 1], t[j + 1]
-        fine = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, 65)[None, :]
-        kf = boundary.frame_at(e, fine.ravel())[2].reshape(fine.shape)
-        rows = np.arange(len(j))
-        m = np.argmax(kf, axis=1)
-        # golden-section search in the fine bracket (a peaked maximum: a parabola
-        # through the grid missed one by 4 tol of radius)
-        a_ = fine[rows, np.maximum(m - 1, 0)]
-        b_ = fine[rows, np.minimum(m + 1, 64)]
-        g = 0.5 * (np.sqrt(5.0) - 1.0)
-        for _ in range(40):
-            x1, x2 = b_ - g * (b_ - a_), a_ + g * (b_ - a_)
-            up = boundary.frame_at(e, x1)[2] < boundary.frame_at(e, x2)[2]
-            a_, b_ = np.where(up, x1, a_), np.where(up, b_, x2)
-        best = 0.5 * (a_ + b_)
-        out += boundary.s_of(e, best).tolist()
-        loops += [e.loop] * len(best)
-    return np.array(loops, dtype=np.int64), np.array(out)
-
-
 def _near_flat_corners(
     boundary: Boundary, cfg: TraceSettings, S: MapSamples
 ) -> tuple[IntArray, FloatArray]:
@@ -228,8 +190,6 @@ class _Tracer:
         self.splines: dict[bytes, Spline] = {}
         self.root_tries: dict[tuple[int, int, int, int], int] = {}
         self.known: list[tuple[FloatArray, FloatArray]] = []
-        #: curvature maxima with an empty osculating disk not yet matched by an event
-        self.maxima: tuple[IntArray, FloatArray, FloatArray] | None = None
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
         els = boundary.elements
@@ -495,40 +455,6 @@ class _Tracer:
             if q[2] > k:
                 (p, n, k, ei, t), x = q, xp
         return p, n, k, ei, t, x
-
-    def missing_ends(self, events: list[_Event]) -> MapSamples | None:
-        """Samples at and around every curvature maximum whose osculating disk is empty
-        (an end point of the axis) with no event at its centre: the branch ending there
-        is fed by a boundary stretch narrower than the sample spacing, and no step of
-        the samples saw it. Each maximum is looked at once."""
-        if self.maxima is None:
-            loop, s = _curvature_maxima(self.b)
-            keep = self.eval(loop, s) if len(s) else None
-            if keep is None:
-                self.maxima = (loop, s, np.zeros((0, 2)))
-            else:
-                sel = keep.is_self
-                self.maxima = (loop[sel], s[sel], keep.centre[sel])
-        loop, s, centre = self.maxima
-        if len(s) == 0:
-            return None
-        ends = np.array([e.point for e in events if e.kind is NodeKind.CURVATURE_CENTRE])
-        near = max(self.cfg.tol, 10 * self.cfg.eps_s)
-        if len(ends):
-            gap = np.linalg.norm(centre[:, None, :] - ends[None, :, :], axis=2).min(axis=1)
-            miss = gap > near
-        else:
-            miss = np.ones(len(s), dtype=bool)
-        self.maxima = (loop[:0], s[:0], centre[:0])
-        if not np.any(miss):
-            return None
-        # the maximum and a geometric cluster either side, down to the tolerance
-        steps = self.cfg.spacing * 0.5 ** np.arange(1, 60)
-        steps = steps[steps > self.cfg.tol]
-        offsets = np.concatenate([[0.0], steps, -steps])
-        new_s = (s[miss][:, None] + offsets[None, :]).ravel()
-        new_loop = np.repeat(loop[miss], len(offsets))
-        return self.eval(new_loop, new_s)
 
     def resolve(self, S: MapSamples) -> tuple[MapSamples, list[_Event], bool]:
         """Refine the samples until every step is continuous or an event is isolated.
@@ -1085,13 +1011,9 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
         kept = _thin(S, _dedupe(S, intervals, twin, tol), 1e-2 * tol, 0.5 * tol)
         added = _missing_fit(tr, S, kept, tol) + _fill_empty(tr, kept, intervals)
         if not added:
-            # converged; but an end point no step of the samples saw is looked for
-            extra = tr.missing_ends(events)
-            if extra is None:
-                graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
-                _check_topology(graph, len(tr.L))
-                return graph
-            added = [extra]
+            graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
+            _check_topology(graph, len(tr.L))
+            return graph
         S = MapSamples.concat([S, *added])
     raise ComputationError("the medial axis did not reach the tolerance")
 
