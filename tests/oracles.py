@@ -677,7 +677,10 @@ class FaceBoundary:
     def medial_point(self, i: int, t: float) -> FloatArray:
         """The true medial point ``b + s* n`` of the boundary point of edge ``i`` at ``t``."""
         b, nrm = self.inward_normal(i, t)
-        return b + self.medial_depth(b, nrm, max_depth=self.curvature_radius(i, t)) * nrm
+        # (the osculating radius where the osculating disk is in the face: the ray
+        # bisection is ill-conditioned there, and read 0.0044 for 0.01 next to an
+        # ellipse's vertex far from the origin)
+        return b + _depth(self, b, nrm, self.curvature_radius(i, t)) * nrm
 
     def local_medial_distance(self, p: FloatArray, i: int, t: float, window: float) -> float:
         """Distance from ``p`` to the true medial points whose footpoint on edge ``i`` lies
