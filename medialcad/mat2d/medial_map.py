@@ -673,7 +673,7 @@ def _refine_element(
     t0 = C.param[cj]
     lo2, hi2 = np.minimum(lo, hi), np.maximum(lo, hi)
     is_own = own[rr] == ei
-    period = abs(e.piece.t1 - e.piece.t0)
+    span = abs(e.piece.t1 - e.piece.t0)  # a closed edge's period
     speed = np.zeros(len(rr))
     if np.any(is_own):
         speed = np.linalg.norm(e.piece.curve.derivs(own_param[rr])[1], axis=1)
@@ -686,7 +686,7 @@ def _refine_element(
             return lo2, hi2
         tb = own_param[rr]
         if closed:
-            tb = tb + period * np.round((t0 - tb) / period)
+            tb = tb + span * np.round((t0 - tb) / span)
         cut = np.minimum(0.5 * near[rr] / np.maximum(speed, 1e-300), 0.5 * np.abs(t0 - tb))
         inside = is_own & (lo2 < tb + cut) & (tb - cut < hi2)
         lo2 = np.where(inside & (t0 > tb), np.maximum(lo2, tb + cut), lo2)
@@ -716,7 +716,6 @@ def _refine_element(
     worse = ~(fv <= f0)
     t = np.where(worse, t0, t)
     fv = np.where(worse, f0, fv)
-    span = abs(e.piece.t1 - e.piece.t0)
     at_end = (np.abs(t - e.piece.t0) < 1e-12 * span) | (np.abs(t - e.piece.t1) < 1e-12 * span)
     fv = np.where(at_end, fv * (1 + 1e-12) + pen, fv)
     lo_t, hi_t = min(e.piece.t0, e.piece.t1), max(e.piece.t0, e.piece.t1)
@@ -732,7 +731,7 @@ def _refine_element(
     if np.any(is_own):
         gap = np.abs(t - own_param[rr])
         if closed:
-            gap = np.minimum(gap, np.abs(period - gap))
+            gap = np.minimum(gap, np.abs(span - gap))
         fv = np.where(is_own & (gap < 1e-9 * span), np.inf, fv)
     order = np.lexsort((fv, rr))
     head = np.ones(len(order), dtype=bool)

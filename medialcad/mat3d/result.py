@@ -178,7 +178,7 @@ class MedialAxis3D:
         """How far the solid's own faces may lie from the recognised profile swept: the
         B-rep's largest recorded tolerance, or the recognition's measured deviation."""
         rec = self.recognition
-        return max(float(getattr(rec, "brep_tolerance", 0.0)), float(rec.tolerance))
+        return max(float(rec.brep_tolerance), float(rec.tolerance))
 
     @property
     def error_bound(self) -> float:
