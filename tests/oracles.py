@@ -654,6 +654,18 @@ class FaceBoundary:
         out = [c for r, c in self._tips if r <= max_radius]
         return np.array(out).reshape(-1, 3)
 
+    def curvature_ends(self, slack: float) -> FloatArray:
+        """``(N, 3)`` centres of the convex curvature maxima whose osculating disk is
+        empty (no boundary point nearer its centre than its radius less ``slack``): every
+        one is an end point of the medial axis (THEORY.md), however short its branch."""
+        self.sharp_tips(0.0)  # computes the maxima
+        out = []
+        for rho, c in self._tips:
+            d, _ = self.nearest(c)
+            if d >= rho - slack and self.inside(c, clearance=d):
+                out.append(c)
+        return np.array(out).reshape(-1, 3)
+
     def near_convex_corner(self, p: FloatArray, dist: float) -> bool:
         if len(self.convex_corners) == 0:
             return False

@@ -109,6 +109,44 @@ def _initial_samples(boundary: Boundary, spacing: float) -> tuple[IntArray, Floa
     return np.concatenate(loops).astype(np.int64), np.concatenate(ss)
 
 
+def _curvature_maxima(boundary: Boundary) -> tuple[IntArray, FloatArray]:
+    """Every local maximum of the (convex) curvature inside the free-form edges:
+    ``(loop, s)``. A grid of 257 parameters per edge, a grid of 65 across the bracket of
+    each of its maxima, then golden-section search between the neighbours of the best.
+    (A curvature jump at a joint or a seam is an end the events find themselves.)"""
+    loops: list[int] = []
+    out: list[float] = []
+    for e in boundary.elements:
+        if e.piece is None or e.piece.curve.constant_curvature is not None:
+            continue
+        t = np.linspace(e.piece.t0, e.piece.t1, 257)
+        k = boundary.frame_at(e, t)[2]
+        left = np.concatenate([[-np.inf], k[:-1]])
+        right = np.concatenate([k[1:], [-np.inf]])
+        j = np.nonzero((k > 0) & (k >= left) & (k >= right) & ((k > left) | (k > right)))[0]
+        j = j[(j > 0) & (j < len(t) - 1)]
+        if len(j) == 0:
+            continue
+        lo, hi = t[j - 1], t[j + 1]
+        fine = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, 65)[None, :]
+        kf = boundary.frame_at(e, fine.ravel())[2].reshape(fine.shape)
+        rows = np.arange(len(j))
+        m = np.argmax(kf, axis=1)
+        # golden-section search in the fine bracket (a peaked maximum: a parabola
+        # through the grid missed one by 4 tol of radius)
+        a_ = fine[rows, np.maximum(m - 1, 0)]
+        b_ = fine[rows, np.minimum(m + 1, 64)]
+        g = 0.5 * (np.sqrt(5.0) - 1.0)
+        for _ in range(40):
+            x1, x2 = b_ - g * (b_ - a_), a_ + g * (b_ - a_)
+            up = boundary.frame_at(e, x1)[2] < boundary.frame_at(e, x2)[2]
+            a_, b_ = np.where(up, x1, a_), np.where(up, b_, x2)
+        best = 0.5 * (a_ + b_)
+        out += boundary.s_of(e, best).tolist()
+        loops += [e.loop] * len(best)
+    return np.array(loops, dtype=np.int64), np.array(out)
+
+
 def _near_flat_corners(
     boundary: Boundary, cfg: TraceSettings, S: MapSamples
 ) -> tuple[IntArray, FloatArray]:
@@ -190,6 +228,8 @@ class _Tracer:
         self.splines: dict[bytes, Spline] = {}
         self.root_tries: dict[tuple[int, int, int, int], int] = {}
         self.known: list[tuple[FloatArray, FloatArray]] = []
+        #: curvature maxima with an empty osculating disk not yet matched by an event
+        self.maxima: tuple[IntArray, FloatArray, FloatArray] | None = None
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
         els = boundary.elements
@@ -455,6 +495,57 @@ class _Tracer:
             if q[2] > k:
                 (p, n, k, ei, t), x = q, xp
         return p, n, k, ei, t, x
+
+    def missing_ends(self, ends: list[FloatArray], S: MapSamples) -> MapSamples | None:
+        """Samples for every curvature maximum inside a free-form edge whose osculating
+        disk is empty (an end point of the axis) with no curvature-centre node among
+        ``ends``: the branch ending there is fed by a stretch narrower than the sample
+        spacing, and no step of the samples saw it. The samples go about the boundary
+        point across the disk (from the samples ``S``), whose partner jumps over the
+        stretch: the jump finds the branch point, and the branch follows. Each maximum
+        is looked at once; ``None`` if none is missing."""
+        if self.maxima is None:
+            loop, s = _curvature_maxima(self.b)
+            keep = self.eval(loop, s) if len(s) else None
+            if keep is None:
+                self.maxima = (loop, s, np.zeros((0, 2)))
+            else:
+                sel = keep.is_self
+                self.maxima = (loop[sel], s[sel], keep.centre[sel])
+        loop, s, centre = self.maxima
+        if len(s) == 0:
+            return None
+        near = max(self.cfg.tol, 10 * self.cfg.eps_s)
+        if len(ends):
+            at = np.array(ends).reshape(-1, 2)
+            gap = np.linalg.norm(centre[:, None, :] - at[None, :, :], axis=2).min(axis=1)
+            miss = gap > near
+        else:
+            miss = np.ones(len(s), dtype=bool)
+        self.maxima = (loop[:0], s[:0], centre[:0])
+        if not np.any(miss):
+            return None
+        # not inside the end's own stretch (self samples there hide the partner jumps
+        # of a branch point beside it): a geometric cluster, down to the tolerance, about
+        # the boundary point across the end's disk, whose partner jumps over the stretch
+        steps = self.cfg.spacing * 0.5 ** np.arange(1, 60)
+        steps = steps[steps > self.cfg.tol]
+        offsets = np.concatenate([[0.0], steps, -steps])
+        seeds_l: list[int] = []
+        seeds_s: list[float] = []
+        for k in np.nonzero(miss)[0]:
+            p, _, _, _, _ = self.frame_s(int(loop[k]), float(s[k]))
+            rho = float(np.linalg.norm(centre[k] - p))
+            far = np.linalg.norm(S.foot - p, axis=1) > rho
+            if not np.any(far):
+                continue
+            d = np.where(far, np.linalg.norm(S.foot - centre[k], axis=1), np.inf)
+            j = int(np.argmin(d))
+            seeds_l += [int(S.loop[j])] * len(offsets)
+            seeds_s += (S.s[j] + offsets).tolist()
+        if not seeds_s:
+            return None
+        return self.eval(np.array(seeds_l, dtype=np.int64), np.array(seeds_s))
 
     def resolve(self, S: MapSamples) -> tuple[MapSamples, list[_Event], bool]:
         """Refine the samples until every step is continuous or an event is isolated.
@@ -1013,7 +1104,12 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
         if not added:
             graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
             _check_topology(graph, len(tr.L))
-            return graph
+            # converged; but an end point no step of the samples saw is looked for
+            ends = [n.point_2d for n in graph.nodes if n.kind is NodeKind.CURVATURE_CENTRE]
+            extra = tr.missing_ends(ends, S)
+            if extra is None:
+                return graph
+            added = [extra]
         S = MapSamples.concat([S, *added])
     raise ComputationError("the medial axis did not reach the tolerance")
 
