@@ -44,6 +44,7 @@ from medialcad.mat2d.graph import (
     NodeKind,
 )
 from medialcad.mat2d.medial_map import (
+    CIRCLE,
     LINE,
     MapSamples,
     build_candidates,
@@ -640,8 +641,9 @@ class _Tracer:
     ) -> FloatArray:
         """Where ``f`` minimized on element ``e0`` equals ``f`` minimized on ``e1``, in
         each step ``[a, a + w]`` (bracketed: ``e0`` wins at ``a``, ``e1`` at ``a + w``);
-        Illinois false position with a bisection every fourth step, to
-        :meth:`_root_width`. NaN where the bracket does not hold or it fails."""
+        Illinois false position with a bisection every fourth step and no step closer
+        than half the width to an end, to :meth:`_root_width`. NaN where the bracket
+        does not hold or it fails."""
         cfg = self.cfg
         m = len(a)
 
@@ -668,8 +670,13 @@ class _Tracer:
             with np.errstate(invalid="ignore", divide="ignore"):
                 xf = (l0 * gh - h0 * gl) / (gh - gl)
             mid = 0.5 * (l0 + h0)
-            bad = ~np.isfinite(xf) | (xf <= l0) | (xf >= h0) | (it % 4 == 3)
-            xn = np.where(bad, mid, xf)
+            bad = ~np.isfinite(xf) | (it % 4 == 3)
+            # a step at least half the width from either end: once one end sits on the
+            # root (to its last digits) false position lands on it (or, rounded, past
+            # it) again and again and only bisections moved the other end (35 steps for
+            # ~15 % of ties); the step just inside closes the bracket to the width
+            half = 0.5 * width[idx]
+            xn = np.where(bad, mid, np.clip(xf, l0 + half, h0 - half))
             gx = g(idx, xn)
             ok[idx[~np.isfinite(gx)]] = False
             up = gx >= 0
@@ -925,6 +932,19 @@ def _complete_feet(
                     centre[inside] = run_pt[j[inside]]
                 near = np.linalg.norm(centre - node_pt[q], axis=1) <= radius
                 covered[q] |= S.is_self[nb] & near
+    # a foot on an arc whose centre is the node (within the merge radius) is any point of
+    # the arc, and ill-conditioned: the arc's curvature-centre event at the node stands
+    # for it (a foot placed by the last digits of a tie cut the spoke from that centre
+    # to a nearly flat convex corner beside the arc; its fit never converged)
+    centres = [g for g in events if g.kind is NodeKind.CURVATURE_CENTRE]
+    arc = np.nonzero(~covered & (C.kind[el] == CIRCLE))[0]
+    if len(arc) and centres:
+        at = np.linalg.norm(C.circ_c[C.pos[el[arc]]] - node_pt[arc], axis=1) <= radius
+        for i in arc[at]:
+            covered[i] = any(
+                g.loop == loops[i] and np.linalg.norm(g.point - node_pt[i]) <= radius
+                for g in centres
+            )
     added: list[_Event] = []
     for i in np.nonzero(~covered)[0]:
         e, k = feet[i]
