@@ -191,6 +191,63 @@ def test_weak_curvature_maximum_beside_a_second_contact_has_its_branch() -> None
     check_with_oracles(face, "weak curvature maximum", n_boundary=80, per_branch=12)
 
 
+@pytest.mark.parametrize("failure", ["the rounds run out", "a round fails"])
+def test_a_converged_graph_is_kept_when_the_search_for_missing_ends_fails(
+    monkeypatch: pytest.MonkeyPatch, failure: str
+) -> None:
+    """Once the trace has converged, curvature maxima with no end point get samples and
+    more rounds; if those rounds fail (here forced) the graph that had converged is the
+    answer, as before the search existed, not an error."""
+    from medialcad.errors import ComputationError
+    from medialcad.mat2d import trace
+
+    face = TopoDS.Face_s(F.read_exact("blob_weak_curvature_maximum.bbrep"))
+    with monkeypatch.context() as m:
+        m.setattr(trace._Tracer, "missing_ends", lambda self, ends, S: None)
+        before = compute(face)
+    searched = []
+    found = trace._Tracer.missing_ends
+
+    def search(self: Any, ends: Any, S: Any) -> Any:
+        extra = found(self, ends, S)
+        searched.append(extra is not None)
+        return extra
+
+    resolved = trace._resolved_events
+
+    def resolve(tr: Any, S: Any) -> Any:
+        if searched and failure == "a round fails":
+            raise ComputationError("forced")
+        return resolved(tr, S)
+
+    monkeypatch.setattr(trace._Tracer, "missing_ends", search)
+    monkeypatch.setattr(trace, "_resolved_events", resolve)
+    if failure == "the rounds run out":
+        # exactly the rounds the trace took to converge: none is left after the search
+        import functools
+
+        fits = trace._missing_fit
+        calls = []
+
+        def fit(*args: Any) -> Any:
+            calls.append(1)
+            return fits(*args)
+
+        with monkeypatch.context() as m:
+            m.setattr(trace._Tracer, "missing_ends", lambda self, ends, S: None)
+            m.setattr(trace, "_missing_fit", fit)
+            compute(face)
+        limited = functools.partial(trace.TraceSettings, max_fit_rounds=len(calls))
+        monkeypatch.setattr(trace, "TraceSettings", limited)  # (api imports it per call)
+    after = compute(face)
+    assert searched == [True]  # the weak maximum is missing at first
+    assert len(after.nodes) == len(before.nodes)
+    assert len(after.branches) == len(before.branches)
+    np.testing.assert_allclose(
+        np.array([n.point for n in after.nodes]), np.array([n.point for n in before.nodes])
+    )
+
+
 def test_branch_point_beside_a_flat_curvature_maximum_keeps_its_branches() -> None:
     """The profile of a fresh random thin blob extrusion (2026-12-02, kept exactly as binary
     BREP): a branch point (r = 0.37001) 2.2e-4 from the centre of a flat curvature maximum

@@ -534,7 +534,13 @@ class _Tracer:
         offsets = np.concatenate([[0.0], steps, -steps])
         seeds_l: list[int] = []
         seeds_s: list[float] = []
+        seeded: list[FloatArray] = []
         for k in np.nonzero(miss)[0]:
+            # one cluster per centre (an arc stored as a NURBS curve has its constant
+            # curvature's rounding for maxima: 95 of them at one centre)
+            if any(np.linalg.norm(centre[k] - c) <= near for c in seeded):
+                continue
+            seeded.append(centre[k])
             p, _, _, _, _ = self.frame_s(int(loop[k]), float(s[k]))
             rho = float(np.linalg.norm(centre[k] - p))
             far = np.linalg.norm(S.foot - p, axis=1) > rho
@@ -1108,8 +1114,16 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
     if len(s):
         S = MapSamples.concat([S, tr.eval(loop, s)])
     tol = settings.tol
+    # the graph as it first converged, kept while missing ends are looked for: if the
+    # rounds after them run out or fail, it is the answer (as before they were looked for)
+    converged: MedialGraph | None = None
     for _ in range(settings.max_fit_rounds):
-        S, events = _resolved_events(tr, S)
+        try:
+            S, events = _resolved_events(tr, S)
+        except ComputationError:
+            if converged is None:
+                raise
+            return converged
         intervals, tables = _intervals(S, events, tr.L)
         twin = _twins(S, intervals, tables, tr.L)
         flat = _unresolved_corners(intervals, twin)
@@ -1122,15 +1136,25 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
         kept = _thin(S, _dedupe(S, intervals, twin, tol), 1e-2 * tol, 0.5 * tol)
         added = _missing_fit(tr, S, kept, tol) + _fill_empty(tr, kept, intervals)
         if not added:
-            graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
-            _check_topology(graph, len(tr.L))
-            # converged; but an end point no step of the samples saw is looked for
+            try:
+                graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
+                _check_topology(graph, len(tr.L))
+            except ComputationError:
+                if converged is None:
+                    raise
+                return converged
+            if converged is not None:
+                return graph
+            # converged; but an end point no step of the samples saw is looked for (once)
             ends = [n.point_2d for n in graph.nodes if n.kind is NodeKind.CURVATURE_CENTRE]
             extra = tr.missing_ends(ends, S)
             if extra is None:
                 return graph
+            converged = graph
             added = [extra]
         S = MapSamples.concat([S, *added])
+    if converged is not None:
+        return converged
     raise ComputationError("the medial axis did not reach the tolerance")
 
 
