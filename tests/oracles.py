@@ -624,8 +624,13 @@ class FaceBoundary:
     def sharp_tips(self, max_radius: float) -> FloatArray:
         """``(N, 3)`` centres of curvature of the convex curvature maxima whose radius is at
         most ``max_radius``: tips so sharp that their end point lies within that distance
-        of the boundary (at the tolerance they are corners). Each maximum is bracketed on
-        the dense samples and refined by a bounded scalar search."""
+        of the boundary (at the tolerance they are corners)."""
+        out = [c for r, c in self._curvature_tips() if r <= max_radius]
+        return np.array(out).reshape(-1, 3)
+
+    def _curvature_tips(self) -> list[tuple[float, FloatArray]]:
+        """``(radius, centre)`` of every convex curvature maximum (computed once): each is
+        bracketed on the dense samples and refined by a bounded scalar search."""
         if not hasattr(self, "_tips"):
             tips: list[tuple[float, FloatArray]] = []
             for i, c in enumerate(self.curves):
@@ -651,16 +656,14 @@ class FaceBoundary:
                         b, n = self.inward_normal(i, float(opt.x))
                         tips.append((float(opt.fun), b + float(opt.fun) * n))
             self._tips = tips
-        out = [c for r, c in self._tips if r <= max_radius]
-        return np.array(out).reshape(-1, 3)
+        return self._tips
 
     def curvature_ends(self, slack: float) -> FloatArray:
         """``(N, 3)`` centres of the convex curvature maxima whose osculating disk is
         empty (no boundary point nearer its centre than its radius less ``slack``): every
         one is an end point of the medial axis (THEORY.md), however short its branch."""
-        self.sharp_tips(0.0)  # computes the maxima
         out = []
-        for rho, c in self._tips:
+        for rho, c in self._curvature_tips():
             d, _ = self.nearest(c)
             if d >= rho - slack and self.inside(c, clearance=d):
                 out.append(c)
