@@ -134,14 +134,18 @@ def _curvature_maxima(boundary: Boundary) -> tuple[IntArray, FloatArray]:
         rows = np.arange(len(j))
         m = np.argmax(kf, axis=1)
         # golden-section search in the fine bracket (a peaked maximum: a parabola
-        # through the grid missed one by 4 tol of radius)
+        # through the grid missed one by 4 tol of radius); one new point per step
         a_ = fine[rows, np.maximum(m - 1, 0)]
         b_ = fine[rows, np.minimum(m + 1, 64)]
         g = 0.5 * (np.sqrt(5.0) - 1.0)
+        x1, x2 = b_ - g * (b_ - a_), a_ + g * (b_ - a_)
+        k1, k2 = boundary.frame_at(e, x1)[2], boundary.frame_at(e, x2)[2]
         for _ in range(40):
-            x1, x2 = b_ - g * (b_ - a_), a_ + g * (b_ - a_)
-            up = boundary.frame_at(e, x1)[2] < boundary.frame_at(e, x2)[2]
+            up = k1 < k2  # the maximum is in [x1, b], and x2 is its new x1
             a_, b_ = np.where(up, x1, a_), np.where(up, b_, x2)
+            x1, x2 = np.where(up, x2, b_ - g * (b_ - a_)), np.where(up, a_ + g * (b_ - a_), x1)
+            k_new = boundary.frame_at(e, np.where(up, x2, x1))[2]
+            k1, k2 = np.where(up, k2, k_new), np.where(up, k_new, k1)
         best = 0.5 * (a_ + b_)
         out += boundary.s_of(e, best).tolist()
         loops += [e.loop] * len(best)
@@ -229,8 +233,6 @@ class _Tracer:
         self.splines: dict[bytes, Spline] = {}
         self.root_tries: dict[tuple[int, int, int, int], int] = {}
         self.known: list[tuple[FloatArray, FloatArray]] = []
-        #: curvature maxima with an empty osculating disk not yet matched by an event
-        self.maxima: tuple[IntArray, FloatArray, FloatArray] | None = None
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
         els = boundary.elements
@@ -505,17 +507,12 @@ class _Tracer:
         point across the disk (from the samples ``S``), whose partner jumps over the
         stretch: the jump finds the branch point, and the branch follows. Each maximum
         is looked at once; ``None`` if none is missing."""
-        if self.maxima is None:
-            loop, s = _curvature_maxima(self.b)
-            keep = self.eval(loop, s) if len(s) else None
-            if keep is None:
-                self.maxima = (loop, s, np.zeros((0, 2)))
-            else:
-                sel = keep.is_self
-                self.maxima = (loop[sel], s[sel], keep.centre[sel])
-        loop, s, centre = self.maxima
+        loop, s = _curvature_maxima(self.b)
         if len(s) == 0:
             return None
+        at_max = self.eval(loop, s)
+        sel = at_max.is_self  # an empty osculating disk
+        loop, s, centre = loop[sel], s[sel], at_max.centre[sel]
         near = max(self.cfg.tol, 10 * self.cfg.eps_s)
         if len(ends):
             at = np.array(ends).reshape(-1, 2)
@@ -523,7 +520,6 @@ class _Tracer:
             miss = gap > near
         else:
             miss = np.ones(len(s), dtype=bool)
-        self.maxima = (loop[:0], s[:0], centre[:0])
         if not np.any(miss):
             return None
         # not inside the end's own stretch (self samples there hide the partner jumps
@@ -1113,17 +1109,34 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
     loop, s = _near_flat_corners(boundary, settings, S)
     if len(s):
         S = MapSamples.concat([S, tr.eval(loop, s)])
+    graph, S, used = _converge(tr, frame, S, settings.max_fit_rounds)
+    # an end point no step of the samples saw is looked for, once, in the converged graph
+    ends = [n.point_2d for n in graph.nodes if n.kind is NodeKind.CURVATURE_CENTRE]
+    extra = tr.missing_ends(ends, S)
+    if extra is None:
+        return graph
+    try:
+        found, _, _ = _converge(
+            tr, frame, MapSamples.concat([S, extra]), settings.max_fit_rounds - used
+        )
+    except ComputationError:
+        # the rounds after them ran out or failed: the graph that had converged is the
+        # answer, as before the ends were looked for
+        return graph
+    return found
+
+
+def _converge(
+    tr: _Tracer, frame: Frame, S: MapSamples, rounds: int
+) -> tuple[MedialGraph, MapSamples, int]:
+    """Refine the samples, round by round, until the branches fit within the tolerance
+    and no interval is left empty: ``(graph, samples, rounds used)``. Raises
+    :class:`ComputationError` when ``rounds`` are not enough or a round fails."""
+    settings = tr.cfg
     tol = settings.tol
-    # the graph as it first converged, kept while missing ends are looked for: if the
-    # rounds after them run out or fail, it is the answer (as before they were looked for)
-    converged: MedialGraph | None = None
-    for _ in range(settings.max_fit_rounds):
-        try:
-            S, events = _resolved_events(tr, S)
-        except ComputationError:
-            if converged is None:
-                raise
-            return converged
+    merge = max(tol, 10 * settings.eps_s)
+    for used in range(1, rounds + 1):
+        S, events = _resolved_events(tr, S)
         intervals, tables = _intervals(S, events, tr.L)
         twin = _twins(S, intervals, tables, tr.L)
         flat = _unresolved_corners(intervals, twin)
@@ -1131,30 +1144,15 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
             events = [e for e in events if all(e is not f for f in flat)]
             intervals, tables = _intervals(S, events, tr.L)
             twin = _twins(S, intervals, tables, tr.L)
-        n_nodes = _merge_nodes(events, max(tol, 10 * settings.eps_s))
-        intervals = _retarget_corner_ends(S, intervals, events, max(tol, 10 * settings.eps_s))
+        n_nodes = _merge_nodes(events, merge)
+        intervals = _retarget_corner_ends(S, intervals, events, merge)
         kept = _thin(S, _dedupe(S, intervals, twin, tol), 1e-2 * tol, 0.5 * tol)
         added = _missing_fit(tr, S, kept, tol) + _fill_empty(tr, kept, intervals)
         if not added:
-            try:
-                graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
-                _check_topology(graph, len(tr.L))
-            except ComputationError:
-                if converged is None:
-                    raise
-                return converged
-            if converged is not None:
-                return graph
-            # converged; but an end point no step of the samples saw is looked for (once)
-            ends = [n.point_2d for n in graph.nodes if n.kind is NodeKind.CURVATURE_CENTRE]
-            extra = tr.missing_ends(ends, S)
-            if extra is None:
-                return graph
-            converged = graph
-            added = [extra]
+            graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
+            _check_topology(graph, len(tr.L))
+            return graph, S, used
         S = MapSamples.concat([S, *added])
-    if converged is not None:
-        return converged
     raise ComputationError("the medial axis did not reach the tolerance")
 
 
