@@ -336,6 +336,24 @@ def bspline_blob(radii: ArrayLike, centre: ArrayLike = (0.0, 0.0)) -> TopoDS_Fac
     return _face(cq.Wire.assembleEdges([edge]))
 
 
+def with_seam_at(face: TopoDS_Face, t: float, relative: bool = False) -> TopoDS_Face:
+    """The face bounded by one periodic B-spline edge, with the curve's seam moved to its
+    parameter ``t`` (``relative``: that fraction of the way along its range; a knot
+    inserted there becomes the origin): the same point set, starting elsewhere."""
+    from OCP.BRep import BRep_Tool
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+
+    edge = TopoDS.Edge_s(TopExp_Explorer(face, TopAbs_EDGE).Current())
+    curve = BRep_Tool.Curve_s(edge, 0.0, 0.0).Copy()
+    if relative:
+        t0, t1 = curve.FirstParameter(), curve.LastParameter()
+        t = t0 + t * (t1 - t0)
+    curve.InsertKnot(t, 1, 1e-12)
+    curve.SetOrigin(min(range(1, curve.NbKnots() + 1), key=lambda i: abs(curve.Knot(i) - t)))
+    return _face(cq.Wire.assembleEdges([cq.Edge(BRepBuilderAPI_MakeEdge(curve).Edge())]))
+
+
 def polygon(pts: ArrayLike) -> TopoDS_Face:
     """A polygonal face (vertices in either orientation)."""
     return _face(_poly_wire(pts))

@@ -336,7 +336,8 @@ class FaceBoundary:
         idx = self._check_idx[
             np.array(self._tree.query_ball_point(x, d + 0.5 * self._sh), dtype=int)
         ]
-        if len(idx):  # samples next to the foot DSS found would only find it again
+        at_vertex = self.last_vertex is not None
+        if len(idx) and not at_vertex:  # samples next to DSS's foot would only find it again
             idx = idx[np.linalg.norm(self._spts[idx] - q, axis=1) > 2.0 * self._sh]
         if len(idx) == 0:
             return d, q
@@ -357,7 +358,10 @@ class FaceBoundary:
             a = self._spar[j - 1] if j > 0 and self._sedge[j - 1] == i else self._spar[j]
             b = self._spar[j + 1] if j + 1 < n and self._sedge[j + 1] == i else self._spar[j]
             dj, qj, tj = self._project_local(x, i, float(self._spar[j]), float(a), float(b))
-            if dj < d - 1e-15 * max(1.0, d):
+            # a vertex DSS settled on (within its 1e-7 deflection) yields to a foot inside
+            # an edge as near: beside the smooth seam of a closed B-spline the feet either
+            # side of it are the true ones (a foot at an edge's end is its vertex again)
+            if dj < d - 1e-15 * max(1.0, d) or (at_vertex and dj <= d + self.eps):
                 d, q, self.last_foot, self.last_vertex = dj, qj, (i, tj), None
         return d, q
 
@@ -645,15 +649,31 @@ class FaceBoundary:
                         tips.append((rho_c, b + rho_c * n))
                     continue
                 rho = np.array([self.curvature_radius(i, float(t)) for t in ts])
-                for j in np.flatnonzero((rho[1:-1] <= rho[:-2]) & (rho[1:-1] <= rho[2:])) + 1:
+                inner = np.flatnonzero((rho[1:-1] <= rho[:-2]) & (rho[1:-1] <= rho[2:])) + 1
+                brackets = [(float(ts[j - 1]), float(ts[j + 1]), float(ts[j])) for j in inner]
+                t0, t1 = float(ts[0]), float(ts[-1])
+                # a smooth closed curve's seam is a point like any other (parameters past
+                # its end wrap round to its start)
+                u0, u1 = self._tangent(i, t0)[1], self._tangent(i, t1)[1]
+                smooth = float(u0 @ u1) > (1 - 1e-12) * float(
+                    np.linalg.norm(u0) * np.linalg.norm(u1)
+                )
+                if c.IsClosed() and smooth and rho[0] <= rho[1] and rho[-1] <= rho[-2]:
+                    brackets.append((float(ts[-2]), t1 + float(ts[1]) - t0, t1))
+
+                def radius(x: float, i: int = i, t0: float = t0, t1: float = t1) -> float:
+                    return self.curvature_radius(i, x - (t1 - t0) if x > t1 else x)
+
+                for lo, hi, mid in brackets:
                     opt = minimize_scalar(
-                        lambda x, i=i: self.curvature_radius(i, x),
-                        bounds=(float(ts[j - 1]), float(ts[j + 1])),
+                        radius,
+                        bounds=(lo, hi),
                         method="bounded",
-                        options={"xatol": 1e-14 * max(1.0, abs(float(ts[j])))},
+                        options={"xatol": 1e-14 * max(1.0, abs(mid))},
                     )
                     if np.isfinite(opt.fun):
-                        b, n = self.inward_normal(i, float(opt.x))
+                        x = float(opt.x)
+                        b, n = self.inward_normal(i, x - (t1 - t0) if x > t1 else x)
                         tips.append((float(opt.fun), b + float(opt.fun) * n))
             self._tips = tips
         return self._tips

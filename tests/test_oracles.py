@@ -189,3 +189,19 @@ def test_oracle_is_self_consistent_on_a_blob() -> None:
     # the oracle agrees with itself: its own medial points are sound (no timing here:
     # speed is measured in bench/, never asserted in unit tests)
     assert err.max() < 1e-9 * fb.diag and rad.max() < 1e-9 * fb.diag
+
+
+@pytest.mark.parametrize("seam", [0.9554, 4.27283, 1.2])
+def test_curvature_ends_do_not_depend_on_where_a_closed_curve_has_its_seam(seam: float) -> None:
+    """A closed B-spline's seam is a point like any other: with the seam moved onto a
+    curvature maximum (4.27283, the weak one; 0.9554, just before one) or between them,
+    the oracle lists the same empty osculating disks' centres as before (it looked only
+    inside the parameter range, and a maximum on the seam went unchecked)."""
+    from OCP.TopoDS import TopoDS
+
+    face = TopoDS.Face_s(F.read_exact("blob_weak_curvature_maximum.bbrep"))
+    before = O.FaceBoundary(face).curvature_ends(1e-8)
+    after = O.FaceBoundary(F.with_seam_at(face, seam)).curvature_ends(1e-8)
+    assert len(before) == len(after) == 6
+    gap = np.linalg.norm(before[:, None, :] - after[None, :, :], axis=2)
+    assert gap.min(axis=1).max() < 1e-6 and gap.min(axis=0).max() < 1e-6

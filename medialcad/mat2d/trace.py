@@ -233,6 +233,8 @@ class _Tracer:
         self.splines: dict[bytes, Spline] = {}
         self.root_tries: dict[tuple[int, int, int, int], int] = {}
         self.known: list[tuple[FloatArray, FloatArray]] = []
+        #: ``(loop, s, centre)`` of the curvature maxima whose osculating disk is empty
+        self.empty_maxima: tuple[IntArray, FloatArray, FloatArray] | None = None
         self.cands = build_candidates(boundary, settings.spacing / 2)
         self.L = np.array(boundary.loop_lengths)
         els = boundary.elements
@@ -499,56 +501,115 @@ class _Tracer:
                 (p, n, k, ei, t), x = q, xp
         return p, n, k, ei, t, x
 
-    def missing_ends(self, ends: list[FloatArray], S: MapSamples) -> MapSamples | None:
-        """Samples for every curvature maximum inside a free-form edge whose osculating
-        disk is empty (an end point of the axis) with no curvature-centre node among
-        ``ends``: the branch ending there is fed by a stretch narrower than the sample
-        spacing, and no step of the samples saw it. The samples go about the boundary
-        point across the disk (from the samples ``S``), whose partner jumps over the
-        stretch: the jump finds the branch point, and the branch follows. Each maximum
-        is looked at once; ``None`` if none is missing."""
-        loop, s = _curvature_maxima(self.b)
-        if len(s) == 0:
-            return None
-        at_max = self.eval(loop, s)
-        sel = at_max.is_self  # an empty osculating disk
-        loop, s, centre = loop[sel], s[sel], at_max.centre[sel]
+    def missing_centres(self, ends: list[FloatArray]) -> tuple[IntArray, FloatArray, FloatArray]:
+        """``(loop, s, centre)`` of every curvature maximum inside a free-form edge whose
+        osculating disk is empty (an end point of the axis) with no curvature-centre
+        node among ``ends`` (one per centre: an arc stored as a NURBS curve has its
+        constant curvature's rounding for maxima, 95 of them at one centre)."""
+        if self.empty_maxima is None:
+            loop, s = _curvature_maxima(self.b)
+            centre = np.zeros((0, 2))
+            if len(s):
+                at_max = self.eval(loop, s)
+                sel = at_max.is_self  # an empty osculating disk
+                loop, s, centre = loop[sel], s[sel], at_max.centre[sel]
+            self.empty_maxima = (loop, s, centre)
+        loop, s, centre = self.empty_maxima
         near = max(self.cfg.tol, 10 * self.cfg.eps_s)
+        miss = np.ones(len(s), dtype=bool)
         if len(ends):
             at = np.array(ends).reshape(-1, 2)
             gap = np.linalg.norm(centre[:, None, :] - at[None, :, :], axis=2).min(axis=1)
             miss = gap > near
-        else:
-            miss = np.ones(len(s), dtype=bool)
-        if not np.any(miss):
-            return None
-        # not inside the end's own stretch (self samples there hide the partner jumps
-        # of a branch point beside it): a geometric cluster, down to the tolerance, about
-        # the boundary point across the end's disk, whose partner jumps over the stretch
+        keep: list[int] = []
+        for k in np.nonzero(miss)[0]:
+            if all(np.linalg.norm(centre[k] - centre[i]) > near for i in keep):
+                keep.append(int(k))
+        return loop[keep], s[keep], centre[keep]
+
+    def missing_ends(
+        self,
+        missing: tuple[IntArray, FloatArray, FloatArray],
+        S: MapSamples,
+        exact: bool = False,
+    ) -> MapSamples | None:
+        """Samples for the ``missing`` end points (:meth:`missing_centres`): the branch
+        ending there is fed by a stretch narrower than the sample spacing, and no step of
+        the samples saw it. Not inside the end's own stretch (self samples there hide the
+        partner jumps of a branch point beside it): a geometric cluster, down to the
+        tolerance, about the boundary point across the disk (from the samples ``S``)
+        whose partner jumps over the stretch: the jump finds the branch point, and the
+        branch follows. ``exact``: about the point across where the partner passes the
+        maximum, bisected to the coordinate noise (:meth:`_across`), for a jump the
+        cluster's steps read as continuous. ``None`` if there is nowhere to put them."""
         steps = self.cfg.spacing * 0.5 ** np.arange(1, 60)
         steps = steps[steps > self.cfg.tol]
         offsets = np.concatenate([[0.0], steps, -steps])
         seeds_l: list[int] = []
         seeds_s: list[float] = []
-        seeded: list[FloatArray] = []
-        for k in np.nonzero(miss)[0]:
-            # one cluster per centre (an arc stored as a NURBS curve has its constant
-            # curvature's rounding for maxima: 95 of them at one centre)
-            if any(np.linalg.norm(centre[k] - c) <= near for c in seeded):
-                continue
-            seeded.append(centre[k])
-            p, _, _, _, _ = self.frame_s(int(loop[k]), float(s[k]))
-            rho = float(np.linalg.norm(centre[k] - p))
+        for lp, s_m, c in zip(*missing, strict=True):
+            p, _, _, _, _ = self.frame_s(int(lp), float(s_m))
+            rho = float(np.linalg.norm(c - p))
             far = np.linalg.norm(S.foot - p, axis=1) > rho
             if not np.any(far):
                 continue
-            d = np.where(far, np.linalg.norm(S.foot - centre[k], axis=1), np.inf)
+            if exact:
+                at = self._across(S, far, int(lp), float(s_m), c)
+                if at is None:
+                    continue
+                seeds_l += [at[0]] * (len(offsets) + 2)
+                seeds_s += (at[1] + offsets).tolist() + list(at[2])
+                continue
+            d = np.where(far, np.linalg.norm(S.foot - c, axis=1), np.inf)
             j = int(np.argmin(d))
             seeds_l += [int(S.loop[j])] * len(offsets)
             seeds_s += (S.s[j] + offsets).tolist()
         if not seeds_s:
             return None
         return self.eval(np.array(seeds_l, dtype=np.int64), np.array(seeds_s))
+
+    def _across(
+        self, S: MapSamples, far: NDArray[np.bool_], loop: int, s_m: float, centre: FloatArray
+    ) -> tuple[int, float, tuple[float, float]] | None:
+        """``(loop, s, (s_lo, s_hi))`` across an empty osculating disk (at ``(loop,
+        s_m)``, centred at ``centre``) where the partner passes the maximum: of the
+        consecutive ``far`` samples whose partners lie on either side of it, the pair
+        nearest the centre, bisected down to the coordinate noise (``s_lo``, ``s_hi``:
+        the last pair). Near a weak maximum the partner sweeps over the stretch feeding
+        its branch so fast that a step crossing it reads as continuous; at the limit it
+        is a jump. ``None`` if no pair."""
+        order = np.lexsort((S.s, S.loop))
+        a, b = order, np.roll(order, -1)
+        half = 0.5 * self.L[loop]
+        off = np.remainder(S.partner_s - s_m + half, 2 * half) - half
+        mine = S.partner_loop == loop
+        pair = (
+            (S.loop[a] == S.loop[b])
+            & far[a]
+            & far[b]
+            & mine[a]
+            & mine[b]
+            & (np.sign(off[a]) != np.sign(off[b]))
+            & (np.abs(off[a] - off[b]) < half)
+        )
+        if not np.any(pair):
+            return None
+        gap = np.linalg.norm(S.foot - centre, axis=1)
+        i = int(np.argmin(np.where(pair, np.minimum(gap[a], gap[b]), np.inf)))
+        lp = int(S.loop[a[i]])
+        lo, hi = float(S.s[a[i]]), float(S.s[b[i]])
+        if hi < lo:  # the pair spans the loop's seam
+            hi += self.L[lp]
+        side = np.sign(off[a[i]])
+        while hi - lo > 1e-3 * self.cfg.eps_s:
+            x = 0.5 * (lo + hi)
+            M = self.eval(np.array([lp]), np.array([x]))
+            o = math.remainder(float(M.partner_s[0]) - s_m, 2 * half)
+            if int(M.partner_loop[0]) == loop and np.sign(o) == side:
+                lo = x
+            else:
+                hi = x
+        return lp, 0.5 * (lo + hi), (lo, hi)
 
     def resolve(self, S: MapSamples) -> tuple[MapSamples, list[_Event], bool]:
         """Refine the samples until every step is continuous or an event is isolated.
@@ -1110,20 +1171,30 @@ def trace_medial_graph(boundary: Boundary, frame: Frame, settings: TraceSettings
     if len(s):
         S = MapSamples.concat([S, tr.eval(loop, s)])
     graph, S, used = _converge(tr, frame, S, settings.max_fit_rounds)
-    # an end point no step of the samples saw is looked for, once, in the converged graph
-    ends = [n.point_2d for n in graph.nodes if n.kind is NodeKind.CURVATURE_CENTRE]
-    extra = tr.missing_ends(ends, S)
-    if extra is None:
-        return graph
-    try:
-        found, _, _ = _converge(
-            tr, frame, MapSamples.concat([S, extra]), settings.max_fit_rounds - used
-        )
-    except ComputationError:
-        # the rounds after them ran out or failed: the graph that had converged is the
-        # answer, as before the ends were looked for
-        return graph
-    return found
+    # end points no step of the samples saw are looked for in the converged graph: with
+    # a cluster across their disks, then (for those still missing) at the exact point
+    # across; a graph is taken only if it has more of them, the last one kept if the
+    # rounds after the samples run out or fail
+    for exact in (False, True):
+        missing = tr.missing_centres(_curvature_ends(graph))
+        if len(missing[1]) == 0:
+            break
+        extra = tr.missing_ends(missing, S, exact)
+        if extra is None:
+            continue
+        try:
+            found, S_found, more = _converge(
+                tr, frame, MapSamples.concat([S, extra]), settings.max_fit_rounds - used
+            )
+        except ComputationError:
+            continue
+        if len(tr.missing_centres(_curvature_ends(found))[1]) < len(missing[1]):
+            graph, S, used = found, S_found, used + more
+    return graph
+
+
+def _curvature_ends(graph: MedialGraph) -> list[FloatArray]:
+    return [n.point_2d for n in graph.nodes if n.kind is NodeKind.CURVATURE_CENTRE]
 
 
 def _converge(
@@ -1316,6 +1387,21 @@ def _dedupe(
         j = twin[i]
         if j < 0 or j == i:
             kept.append(iv)
+            continue
+        a, b = _nodes(iv)
+        if (
+            twin[j] != i
+            and a is not None
+            and b is not None
+            and a != b
+            and set(_nodes(intervals[j])) != {a, b}
+        ):
+            # its twin is a side of another branch (the one sample between a branch
+            # point and a curvature centre 3 tol away had its partner across the disk):
+            # the first of the intervals with samples between its nodes is the branch
+            between = by_nodes.get((a, b), []) + by_nodes.get((b, a), [])
+            if i == min(k for k in between if len(intervals[k].samples)):
+                kept.append(iv)
             continue
         lower = i < j
         if twin[j] == i and len(intervals[j].samples) and _nodes(iv) != _nodes(intervals[j])[::-1]:
