@@ -601,8 +601,10 @@ class _Tracer:
         if hi < lo:  # the pair spans the loop's seam
             hi += self.L[lp]
         side = np.sign(off[a[i]])
-        while hi - lo > 1e-3 * self.cfg.eps_s:
+        for _ in range(200):  # (a tolerance below the coordinates' rounding stops here)
             x = 0.5 * (lo + hi)
+            if hi - lo <= 1e-3 * self.cfg.eps_s or x in (lo, hi):
+                break
             M = self.eval(np.array([lp]), np.array([x]))
             o = math.remainder(float(M.partner_s[0]) - s_m, 2 * half)
             if int(M.partner_loop[0]) == loop and np.sign(o) == side:
@@ -1394,6 +1396,9 @@ def _dedupe(
             and a is not None
             and b is not None
             and a != b
+            and iv.start is not None
+            and iv.end is not None
+            and NodeKind.CURVATURE_CENTRE in (iv.start.kind, iv.end.kind)  # no parallel branch
             and set(_nodes(intervals[j])) != {a, b}
         ):
             # its twin is a side of another branch (the one sample between a branch
