@@ -437,6 +437,7 @@ class _Rows:
     own_param: FloatArray
     self_bound: FloatArray  # 1/k (inf where not convex)
     near: FloatArray  # partners on the own curve closer than this are self
+    cut: FloatArray  # the partner solve skips this much of the own curve round b
 
     def take(self, idx: IntArray) -> _Rows:
         return _Rows(**{k: v[idx] for k, v in self.__dict__.items()})
@@ -661,7 +662,7 @@ def _refine_element(
     """Newton on general element ``g`` from discrete local minima (sample ``rr``,
     candidate offset ``jj``, value ``f0``; by sample, then candidate). Returns the best
     per sample: rows, values, parameters."""
-    b, n, own, own_param, near = R.b, R.n, R.own, R.own_param, R.near
+    b, n, own, own_param, own_cut = R.b, R.n, R.own, R.own_param, R.cut
     ei = int(C.general[g])
     e = boundary.elements[ei]
     assert e.piece is not None
@@ -678,23 +679,40 @@ def _refine_element(
     if np.any(is_own):
         speed = np.linalg.norm(e.piece.curve.derivs(own_param[rr])[1], axis=1)
 
-    def off_own(t0: FloatArray, lo2: FloatArray, hi2: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """Never let the solve fall onto the trivial root q = b on the own curve: the
-        partner of a sample that is not near-self lies at least ``near`` away (on a
-        closed edge, the own point's copy nearest the bracket: across the seam)."""
-        if not np.any(is_own):
-            return lo2, hi2
-        tb = own_param[rr]
+    def solve(
+        t0: FloatArray, lo2: FloatArray, hi2: FloatArray, sel: IntArray
+    ) -> tuple[FloatArray, FloatArray]:
+        """Refine rows ``sel`` from ``t0`` within ``[lo2, hi2]``, never onto the trivial
+        root q = b on the own curve: a partner lies at least ``R.cut`` away
+        (:func:`_own_cut`; on a closed edge, from the own point's copy nearest the
+        bracket: across the seam). A bracket round b is solved on both of its sides
+        (a candidate on one side of b says nothing of a partner close on the other)."""
+        t0, lo2, hi2 = t0[sel], lo2[sel], hi2[sel]
+        own_rows = is_own[sel]
+        if not np.any(own_rows):
+            return _refine_on_edge(e, b[rr[sel]], n[rr[sel]], t0, lo2, hi2)
+        tb = own_param[rr[sel]]
         if closed:
             tb = tb + span * np.round((t0 - tb) / span)
-        cut = np.minimum(0.5 * near[rr] / np.maximum(speed, 1e-300), 0.5 * np.abs(t0 - tb))
-        inside = is_own & (lo2 < tb + cut) & (tb - cut < hi2)
-        lo2 = np.where(inside & (t0 > tb), np.maximum(lo2, tb + cut), lo2)
-        hi2 = np.where(inside & (t0 < tb), np.minimum(hi2, tb - cut), hi2)
-        return lo2, hi2
+        cut = np.minimum(own_cut[rr[sel]] / np.maximum(speed[sel], 1e-300), 0.5 * np.abs(t0 - tb))
+        inside = own_rows & (lo2 < tb + cut) & (tb - cut < hi2)
+        up, down = inside & (t0 > tb), inside & (t0 < tb)
+        lo_a = np.where(up, np.maximum(lo2, tb + cut), lo2)
+        hi_a = np.where(down, np.minimum(hi2, tb - cut), hi2)
+        t, fv = _refine_on_edge(e, b[rr[sel]], n[rr[sel]], t0, lo_a, hi_a)
+        # the other side of b, where the bracket reaches past the cut
+        other = np.nonzero((up & (lo2 < tb - cut)) | (down & (hi2 > tb + cut)))[0]
+        if len(other):
+            o_lo = np.where(up[other], lo2[other], tb[other] + cut[other])
+            o_hi = np.where(up[other], tb[other] - cut[other], hi2[other])
+            rows = rr[sel[other]]
+            t_o, f_o = _refine_on_edge(e, b[rows], n[rows], 0.5 * (o_lo + o_hi), o_lo, o_hi)
+            better = f_o < fv[other]
+            t[other[better]], fv[other[better]] = t_o[better], f_o[better]
+        return t, fv
 
-    lo2, hi2 = off_own(t0, lo2, hi2)
-    t, fv = _refine_on_edge(e, b[rr], n[rr], t0, lo2, hi2)
+    every = np.arange(len(rr))
+    t, fv = solve(t0, lo2, hi2, every)
     if closed:
         # a closed edge: a minimum at its seam may lie on the other side of it
         at_seam = np.nonzero((cj == first) | (cj == last))[0]
@@ -706,10 +724,7 @@ def _refine_element(
             ot0[at_seam] = C.param[other]
             blo, bhi = np.array(lo2), np.array(hi2)
             blo[at_seam], bhi[at_seam] = np.minimum(olo, ohi), np.maximum(olo, ohi)
-            blo, bhi = off_own(ot0, blo, bhi)
-            t_b, f_b = _refine_on_edge(
-                e, b[rr[at_seam]], n[rr[at_seam]], ot0[at_seam], blo[at_seam], bhi[at_seam]
-            )
+            t_b, f_b = solve(ot0, blo, bhi, at_seam)
             better = f_b < fv[at_seam]
             t[at_seam[better]] = t_b[better]
             fv[at_seam[better]] = f_b[better]
@@ -1072,8 +1087,85 @@ def _rows_at(
     # the osculating disk bounds rho* (limit of f on the own curve)
     with np.errstate(divide="ignore"):
         self_bound = np.where(curv > 0, 1.0 / np.where(curv > 0, curv, 1.0), np.inf)
-    near = 0.5 * np.sqrt(tol * np.where(np.isfinite(self_bound), self_bound, 0.0))
-    return _Rows(foot, normal, elem, param, self_bound, near)
+    rho = np.where(np.isfinite(self_bound), self_bound, 0.0)
+    near = 0.5 * np.sqrt(tol * rho)
+    return _Rows(
+        foot,
+        normal,
+        elem,
+        param,
+        self_bound,
+        near,
+        _own_cut(boundary, cands, elem, s, tol, rho, near),
+    )
+
+
+def _own_cut(
+    boundary: Boundary,
+    C: Candidates,
+    elem: IntArray,
+    s: FloatArray,
+    tol: float,
+    rho: FloatArray,
+    near: FloatArray,
+) -> FloatArray:
+    """How much of the own curve round ``b`` the partner solve skips (its trivial root
+    ``q = b``). On the own curve ``f(q) ~ rho + rho' g / 3`` at arc length ``g``: no
+    partner below ``rho - tol / 20`` lies closer than ``0.15 tol / |rho'|``, a third of
+    that is skipped; at most ``near / 2``, at least where ``(q - b) . n`` is still a
+    millionth exact. Where the radius of curvature changes fast (a narrow curvature
+    maximum) a fixed ``near / 2`` skipped the partners that feed its branch."""
+    cut = 0.5 * near
+    gen = np.nonzero((C.kind[elem] == GENERAL) & (rho > 0))[0]
+    if len(gen) == 0:
+        return cut
+    e = elem[gen]
+    s0, length = C.el_s0[e], C.el_len[e]
+    h = 0.25 * near[gen]
+    lo = np.clip(s[gen] - h, s0, s0 + length)
+    hi = np.clip(s[gen] + h, s0, s0 + length)
+    k_lo = _frames(boundary, C, e, lo)[3]
+    k_hi = _frames(boundary, C, e, hi)[3]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        slope = np.abs(1.0 / k_hi - 1.0 / k_lo) / (hi - lo)
+        slope = np.where((k_lo > 0) & (k_hi > 0) & (hi > lo), slope, np.inf)
+        fast = 0.05 * tol / slope
+    floor = np.sqrt(2e6 * np.finfo(float).eps * boundary.diag * rho[gen])
+    cut[gen] = np.clip(fast, np.minimum(floor, cut[gen]), cut[gen])
+    return cut
+
+
+def _osculates(
+    boundary: Boundary,
+    C: Candidates,
+    e: IntArray,
+    s: FloatArray,
+    p_s: FloatArray,
+    p_param: FloatArray,
+    centre: FloatArray,
+    loop_len: FloatArray,
+    tol: float,
+) -> BoolArray:
+    """Of samples on element ``e`` whose partner is close on the same element: whether
+    the disk is the osculating one at the nearby curvature maximum, its centre within
+    ``tol / 2`` of the centre of curvature at the foot, the partner or half-way (next to
+    a narrow maximum the centre runs fast along the branch while the partner is still
+    close). A partner resting on a closed curve's seam, a curvature jump, is taken as
+    before: those disks pivot on the seam point along its normal, the branch is
+    straight, and the seam's end penalty would bias their radius."""
+    d = p_s - s
+    d = np.where(d > 0.5 * loop_len, d - loop_len, np.where(d < -0.5 * loop_len, d + loop_len, d))
+    s0, length = C.el_s0[e], C.el_len[e]
+    mid = s0 + np.clip(np.mod(s + 0.5 * d - s0, loop_len), 0.0, length)
+    p_in = s0 + np.clip(np.mod(p_s - s0, loop_len), 0.0, length)
+    off = np.full(len(e), np.inf)
+    for at in (s, mid, p_in):
+        _, b_at, n_at, k_at = _frames(boundary, C, e, at)
+        rho = np.where(k_at > 0, 1.0 / np.where(k_at > 0, k_at, 1.0), np.inf)
+        off = np.minimum(off, np.linalg.norm(centre - (b_at + rho[:, None] * n_at), axis=1))
+    a, bb = C.el_a[e], C.el_b[e]
+    seam = np.minimum(np.abs(p_param - a), np.abs(p_param - bb)) <= 1e-9 * np.abs(bb - a)
+    return (off <= 0.5 * tol) | seam
 
 
 def evaluate(
@@ -1088,8 +1180,11 @@ def evaluate(
 
     A disk whose radius is within ``tol / 20`` of the osculating radius ``1/k(b)`` is
     taken to be the osculating disk (its centre is the centre of curvature). So is a disk
-    whose partner is on the own curve closer than ``sqrt(tol / k) / 2``: there the medial point is within ``tol`` of the centre of
-    curvature of the nearby curvature maximum, and its equations are ill-conditioned.
+    whose partner is on the own curve closer than ``sqrt(tol / k) / 2`` and whose centre
+    lies within ``tol / 2`` of the centre of curvature at its foot, its partner or
+    half-way: the end point of the nearby curvature maximum, where its equations are
+    ill-conditioned (next to a narrow maximum the centre runs fast along the branch while
+    the partner is still that close: those samples feed the branch).
     Such samples are flagged ``is_self`` and only locate that end point. ``hint``: a
     guess of each radius that speeds up the search (:func:`_global_min`).
     """
@@ -1112,6 +1207,12 @@ def evaluate(
     gap_s = np.abs(p_s - s)
     gap_s = np.minimum(gap_s, loop_len - gap_s)  # across the seam of a closed curve
     own_close = (p_elem == elem) & ~is_self & (gap_s < near) & np.isfinite(self_bound)
+    close = np.nonzero(own_close)[0]
+    if len(close):
+        own_close[close] = _osculates(
+            boundary, cands, elem[close], s[close], p_s[close], p_param[close],
+            centre[close], loop_len[close], tol,
+        )  # fmt: skip
     is_self = is_self | own_close
     return MapSamples(
         loop=loop,

@@ -100,8 +100,17 @@ def pocket_rows(boundary: Boundary, bp: Node, cc: Node, tol: float) -> PocketRow
     def point(t: float) -> FloatArray:
         return np.asarray(curve.point(np.array([wrap(t)]))[0], dtype=float)
 
+    memo: dict[tuple[float, bool], _PocketRow | None] = {}
+
     def solve(t: float, side_a: bool) -> _PocketRow | None:
-        """The row whose foot on one half is ``t`` (its partner on the other half)."""
+        """The row whose foot on one half is ``t`` (its partner on the other half);
+        remembered: a midpoint whose row was not taken is asked again next round."""
+        key = (t, side_a)
+        if key not in memo:
+            memo[key] = _solve(t, side_a)
+        return memo[key]
+
+    def _solve(t: float, side_a: bool) -> _PocketRow | None:
         other = (t_cc, tb_end) if side_a else (ta_end, t_cc)
         x, r = _tangent_partner(boundary, e, wrap(t), point, other)
         if x is None or not cc.radius <= r <= bp.radius:
