@@ -336,6 +336,25 @@ def bspline_blob(radii: ArrayLike, centre: ArrayLike = (0.0, 0.0)) -> TopoDS_Fac
     return _face(cq.Wire.assembleEdges([edge]))
 
 
+def spline_pieces(n: int, bulge: float = 0.02, size: float = 50.0) -> TopoDS_Face:
+    """A smooth star (``r = size (1 + 0.15 sin 7t + 0.05 sin 23t)``) written as ``n``
+    B-spline edges, each through 3 of its points, the middle one moved radially by up
+    to ``bulge / n`` (a fixed pseudo-random draw per ``n``): many small corners, most
+    convex and nearly flat."""
+    rng = np.random.default_rng(n)
+
+    def p(a: float) -> cq.Vector:
+        r = size * (1 + 0.15 * math.sin(7 * a) + 0.05 * math.sin(23 * a))
+        return cq.Vector(r * math.cos(a), r * math.sin(a), 0.0)
+
+    edges = []
+    for i in range(n):
+        a0, a1 = 2 * math.pi * i / n, 2 * math.pi * (i + 1) / n
+        m = p(0.5 * (a0 + a1)) * (1 + bulge * (2 * rng.random() - 1) / n)
+        edges.append(cq.Edge.makeSpline([p(a0), m, p(a1)]))
+    return _face(cq.Wire.assembleEdges(edges))
+
+
 def with_seam_at(face: TopoDS_Face, t: float, relative: bool = False) -> TopoDS_Face:
     """The face bounded by one periodic B-spline edge, with the curve's seam moved to its
     parameter ``t`` (``relative``: that fraction of the way along its range; a knot
@@ -504,6 +523,38 @@ def line_arc_fillet_mix(draw: st.DrawFn) -> TopoDS_Face:
     try:
         face = filleted_polygon(pts, radii)
     except (ValueError, Exception):  # overlapping fillets, OCC refusing the wire
+        assume(False)
+        raise
+    assume(is_valid(face))
+    return face
+
+
+@st.composite
+def bspline_chain(draw: st.DrawFn) -> TopoDS_Face:
+    """A closed loop of 3-30 B-spline edges, each through 3 points of a smooth
+    star-shaped outline (``r = 0.75 + sum a_k cos(k t + p_k)``, three harmonics), the
+    middle points bulged off it by 0 to 5 %: C0 joints whose corners run from nearly
+    flat (no bulge: only the pieces' own tangents differ) to sharp, convex and reflex
+    (other systems often write one curve as many spline pieces)."""
+    n = draw(st.integers(3, 30))
+    amp = _star_shaped_radii(draw, 3, -0.1, 0.1)
+    phase = _star_shaped_radii(draw, 3, 0.0, 2 * np.pi)
+    size = draw(st.sampled_from([0.0, 1e-4, 1e-3, 1e-2, 0.05]))
+    bulge = size * _star_shaped_radii(draw, n, -1.0, 1.0)
+    jitter = np.array(draw(st.lists(st.floats(-0.2, 0.2), min_size=n, max_size=n)))
+
+    def outline(t: FloatArray) -> FloatArray:
+        k = np.arange(1, 4)
+        r = 0.75 + (amp * np.cos(np.outer(t, k) + phase)).sum(axis=1)
+        return np.c_[r * np.cos(t), r * np.sin(t)]
+
+    t = 2 * np.pi * (np.arange(n) + jitter) / n
+    tm = t + 0.5 * np.diff(np.r_[t, t[0] + 2 * np.pi])
+    pts, mid = outline(t), outline(tm) * (1 + bulge)[:, None]
+    edges = [cq.Edge.makeSpline([_v(pts[i]), _v(mid[i]), _v(pts[(i + 1) % n])]) for i in range(n)]
+    try:
+        face = cq.Face.makeFromWires(cq.Wire.assembleEdges(edges)).wrapped
+    except Exception:  # OCC refusing the wire
         assume(False)
         raise
     assume(is_valid(face))

@@ -169,6 +169,17 @@ def test_random_line_arc_fillet_mix(face: Any, seed: int) -> None:
     )
 
 
+@HYPO
+@given(face=F.bspline_chain(), seed=st.integers(0, 2**16))
+def test_random_bspline_chain(face: Any, seed: int) -> None:
+    """Closed loops of short B-spline edges meeting at corners: next to a nearly flat
+    convex corner the partner across it lies within a fraction of a candidate cell of
+    the joint, where the candidates can all read ``f = inf``."""
+    check_with_oracles(
+        F.place(face, F.random_placement(seed)), "spline chain", n_boundary=80, per_branch=12
+    )
+
+
 def test_weak_curvature_maximum_beside_a_second_contact_has_its_branch() -> None:
     """A fresh random blob (2026-12-02, kept exactly as binary BREP) with a flat curvature
     maximum (k = 2.2003, 2.1956 a hundredth away) whose osculating disk is empty: its

@@ -247,6 +247,13 @@ class _Tracer:
         self.convex = [
             (c.loop, c.s % self.L[c.loop], c.point) for c in boundary.corners if c.turn > 0
         ]
+        # the convex corners sorted by (loop, s), for _off_corners
+        cl = np.array([c[0] for c in self.convex], dtype=np.int64)
+        cs = np.array([c[1] for c in self.convex], dtype=float)
+        self.corner_offset = np.concatenate([[0.0], np.cumsum(self.L + 1.0)])[:-1]
+        order = np.argsort(self.corner_offset[cl] + cs) if len(cl) else np.zeros(0, np.int64)
+        self.corner_loop, self.corner_s = cl[order], cs[order]
+        self.corner_key = self.corner_offset[self.corner_loop] + self.corner_s
         # consecutive elements meeting smoothly (not at a convex corner), low index first
         at_corner = {(c.loop, c.s) for c in boundary.corners if c.turn > 0}
         self.smooth_pairs: set[tuple[int, int]] = set()
@@ -266,8 +273,36 @@ class _Tracer:
 
     # -- sampling ------------------------------------------------------------------
     def eval(self, loop: IntArray, s: FloatArray) -> MapSamples:
-        s = np.mod(s, self.L[loop])
+        s = self._off_corners(loop, np.mod(s, self.L[loop]))
         return evaluate(self.b, self.cands, loop, s, self.cfg.tol, self._hint(loop, s))
+
+    def _off_corners(self, loop: IntArray, s: FloatArray) -> FloatArray:
+        """``s`` moved off every convex corner it sits on (within a thousandth of the
+        bisection resolution), to the side it was on: at the corner itself the medial
+        map is its limit from neither side (the disk tangent to one edge there, not the
+        corner's end point of radius 0). A fit check's midpoint between samples placed
+        symmetrically about a nearly flat corner fell on it exactly, and the step
+        from there to its neighbour, whose partner was the corner's spoke, was taken
+        for a branch point of the average radius."""
+        if len(self.corner_s) == 0 or len(s) == 0:
+            return s
+        out = np.asarray(s, dtype=float).copy()
+        length = self.L[loop]
+        key = self.corner_offset[loop] + out
+        k = np.searchsorted(self.corner_key, key)
+        delta = np.maximum(1e-3 * self.cfg.eps_s, 64.0 * np.spacing(length))
+        # the corners either side, and the loop's first and last (across its seam)
+        first = np.searchsorted(self.corner_key, self.corner_offset[loop])
+        last = np.searchsorted(self.corner_key, self.corner_offset[loop] + length) - 1
+        for j in (k - 1, k, first, last):
+            j = np.clip(j, 0, len(self.corner_s) - 1)
+            same = self.corner_loop[j] == loop
+            d = np.remainder(out - self.corner_s[j] + 0.5 * length, length) - 0.5 * length
+            on = same & (np.abs(d) < delta)
+            out = np.where(
+                on, np.mod(self.corner_s[j] + np.where(d > 0, delta, -delta), length), out
+            )
+        return out
 
     def remember(self, S: MapSamples) -> None:
         """Keep the radii of samples sorted by loop and coordinate (hints for new ones)."""
