@@ -80,3 +80,13 @@ def test_a_sample_exactly_on_a_convex_corner_is_moved_off_it() -> None:
     assert moved[2] == s[2]
     at = tr.eval(loop[:1], s[:1])
     assert at.radius[0] < 1e3 * delta  # the spoke's disk, not a far side's
+
+
+def test_fit_next_to_a_merged_node_converges() -> None:
+    """A loop of 19 spline pieces drawn by ``bspline_chain`` (kept exactly as binary
+    BREP): two branch points 0.3 tol apart merge into one node, whose point lies off
+    each; the fit check's midpoint beside it missed by 0.74 tol, and the samples it asked
+    for, inside the radius round the node where samples are thinned, were dropped again
+    round after round ("did not reach the tolerance"). There the node's spread rules."""
+    face = F.read_exact("chain_fit_inside_a_merged_node.bbrep")
+    check_with_oracles(face, "chain, merged node", n_boundary=80, per_branch=12)

@@ -1254,7 +1254,7 @@ def _converge(
             twin = _twins(S, intervals, tables, tr.L)
         n_nodes = _merge_nodes(events, merge)
         intervals = _retarget_corner_ends(S, intervals, events, merge)
-        kept = _thin(S, _dedupe(S, intervals, twin, tol), 1e-2 * tol, 0.5 * tol)
+        kept = _thin(S, _dedupe(S, intervals, twin, tol), _THIN_GAP * tol, _THIN_CAP * tol)
         added = _missing_fit(tr, S, kept, tol) + _fill_empty(tr, kept, intervals)
         if not added:
             graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
@@ -1487,6 +1487,17 @@ def _lower_side(
     return i < back[0] if len(intervals[back[0]].samples) == 0 else False
 
 
+_THIN_GAP = 1e-2  # samples closer than this many tol to the one before them are dropped
+_THIN_CAP = 0.5  # ... and those within 3 spreads of a merged node, at most this many tol
+
+
+def _node_reach(ev: _Event | None, gap: float, cap: float) -> float:
+    """How far round a branch's end node :func:`_thin` drops its samples."""
+    if ev is None:
+        return 0.0
+    return max(gap, min(cap, 3.0 * ev.spread))
+
+
 def _thin(S: MapSamples, ivs: list[_Interval], gap: float, cap: float) -> list[_Interval]:
     """Drop samples closer than ``gap`` to the point before them (the bisection that
     isolates an event leaves clusters of them next to its node; interpolating through
@@ -1517,10 +1528,10 @@ def _thin(S: MapSamples, ivs: list[_Interval], gap: float, cap: float) -> list[_
             far[k] = iv.start.point
             start_pt[k] = iv.start.point
             if iv.start.spread > 0:
-                near[k, 0] = max(gap, min(cap, 3.0 * iv.start.spread))
+                near[k, 0] = _node_reach(iv.start, gap, cap)
         if iv.end is not None:
             end_pt[k] = iv.end.point
-            near[k, 1] = max(gap, min(cap, 3.0 * iv.end.spread))
+            near[k, 1] = _node_reach(iv.end, gap, cap)
     has = counts > 0
     prev[first[has]] = far[has]
     keep = np.linalg.norm(c - prev, axis=1) >= gap
@@ -1561,6 +1572,8 @@ class _FitCheck:
     width: FloatArray  # coordinate) and the spline parameters of its two samples
     ua: FloatArray
     ub: FloatArray
+    # the merged end nodes and how far round them the fit is not checked
+    ends: tuple[tuple[FloatArray, float], ...] = ()
 
 
 def _fit_check(tr: _Tracer, S: MapSamples, iv: _Interval) -> _FitCheck | None:
@@ -1609,7 +1622,16 @@ def _fit_check(tr: _Tracer, S: MapSamples, iv: _Interval) -> _FitCheck | None:
     first[:, 1:] = joint[ok][:, None]
     rows = np.nonzero(first)[0]
     mids = (lo[:, None] + width[:, None] * frac)[first]
-    return _FitCheck(key, iv.loop, spline, mids, lo[rows], width[rows], ua[rows], ub[rows])
+    # round a node merged from several events (3 spreads, at most the merge radius) the
+    # node's own displacement rules the fit, not the check points
+    tol = tr.cfg.tol
+    merge = max(tol, 10 * tr.cfg.eps_s)
+    ends = tuple(
+        (ev.point, _node_reach(ev, _THIN_GAP * tol, merge))
+        for ev in (iv.start, iv.end)
+        if ev is not None and ev.spread > 0
+    )
+    return _FitCheck(key, iv.loop, spline, mids, lo[rows], width[rows], ua[rows], ub[rows], ends)
 
 
 def _straight(tr: _Tracer, S: MapSamples, smp: IntArray) -> bool:
@@ -1708,7 +1730,11 @@ def _missing_fit(tr: _Tracer, S: MapSamples, kept: list[_Interval], tol: float) 
         k += len(c.mids)
         miss = _spline_miss(c, centre[sl], radius[sl], 0.5 * tol)
         bad = (miss > 0.5 * tol) & ~is_self[sl]
-        # (next to a curvature-centre end point: the end point rules there)
+        # (next to a curvature-centre end point: the end point rules there; round a node
+        # merged from several events its spread does: samples within 3 spreads of it are
+        # thinned, and a check point there asked for the same samples round after round)
+        for point, reach in c.ends:
+            bad &= np.linalg.norm(centre[sl] - point, axis=1) >= reach
         if not np.any(bad):
             tr.fit_ok.add(c.key)
             continue
