@@ -2,7 +2,8 @@
 # The longer fuzzing run (README, "Fuzzing"; docs/fuzzing.md): fresh random faces,
 # extrusions and revolutions from the hypothesis strategies, judged by the oracles.
 #   bash scripts/fuzz.sh [EXAMPLES_2D] [EXAMPLES_3D]
-# EXAMPLES_2D per 2D strategy (5 strategies, default 500: 2,500 faces), EXAMPLES_3D per 3D
+# EXAMPLES_2D per 2D strategy (5 strategies and a fifth as many spline loops, default 500:
+# 2,600 faces), EXAMPLES_3D per 3D
 # strategy (5 extrusion and 4 revolution strategies, default 20: 180 solids).
 # Unlike CI, a failing example does not stop its strategy: every example is logged as
 # passed, refused (a clear medialcad InputError) or failed to out/fuzz/<stamp>.jsonl, failing
