@@ -5,19 +5,21 @@ Each face is checked by the oracles; the smaller tests pin the medial map itself
 
 from __future__ import annotations
 
+import cadquery as cq
 import numpy as np
 import pytest
 
+import medialcad
 import medialcad.mat2d.trace as trace
-from medialcad.mat2d.medial_map import pair_minima
+from medialcad.mat2d.boundary import build_boundary
+from medialcad.mat2d.medial_map import build_candidates, pair_minima
+from medialcad.occ.face2d import planar_face
 from tests import faces as F
 from tests.test_mat2d_oracle import check_with_oracles
 
 
 def _tracer(n: int) -> trace._Tracer:
     """The tracer the engine builds for ``F.spline_pieces(n)`` (stopped before tracing)."""
-    import medialcad
-
     made: list[trace._Tracer] = []
     init = trace._Tracer.__init__
 
@@ -90,3 +92,21 @@ def test_fit_next_to_a_merged_node_converges() -> None:
     round after round ("did not reach the tolerance"). There the node's spread rules."""
     face = F.read_exact("chain_fit_inside_a_merged_node.bbrep")
     check_with_oracles(face, "chain, merged node", n_boundary=80, per_branch=12)
+
+
+def test_joint_seeds_run_only_at_convex_corners() -> None:
+    """The extra partner solve next to a joint is for corners: at a joint the boundary
+    takes as smooth (turning by less than its angle tolerance) the candidates see the
+    partners, and a seed would find a real but tiny spoke the tracer has no corner for."""
+    star = _tracer(120)
+    convex = sum(1 for c in star.b.corners if c.turn > 0)
+    assert convex > 0
+    assert int(star.cands.convex_end.sum()) == 2 * convex  # both edges at each corner
+    halves = [
+        cq.Edge.makeThreePointArc(cq.Vector(1, 0, 0), cq.Vector(0, 1, 0), cq.Vector(-1, 0, 0)),
+        cq.Edge.makeThreePointArc(cq.Vector(-1, 0, 0), cq.Vector(0, -1, 0), cq.Vector(1, 0, 0)),
+    ]
+    disk = cq.Face.makeFromWires(cq.Wire.assembleEdges(halves)).wrapped
+    pf = planar_face(disk)
+    C = build_candidates(build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=1e-6), 0.1)
+    assert not C.convex_end.any()

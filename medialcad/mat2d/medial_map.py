@@ -77,6 +77,7 @@ class Candidates:
     loop_offset: FloatArray
     spacing: float  # candidate spacing of general curves
     reflex_end: BoolArray  # (E, 2): the edge's low / high parameter end is a reflex vertex
+    convex_end: BoolArray  # (E, 2): ... is a convex corner
     touch: IntArray  # (E, 2): the element met at the edge's low / high parameter end
     ring: IntArray  # (E, 4): the elements one and two before and after, along the loop
     kind: IntArray  # (E,) LINE, CIRCLE, VERTEX or GENERAL
@@ -295,6 +296,7 @@ def build_candidates(boundary: Boundary, spacing: float) -> Candidates:
         loop_offset=offset,
         spacing=spacing,
         reflex_end=_reflex_ends(boundary, touch),
+        convex_end=_convex_ends(boundary),
         touch=touch,
         ring=_ring(boundary),
         kind=kind,
@@ -360,6 +362,30 @@ def _reflex_ends(boundary: Boundary, touch: IntArray) -> BoolArray:
     element owns that point: a minimum of ``f`` clamped there is the vertex's)."""
     is_vertex = np.array([e.is_vertex for e in boundary.elements] + [False])
     return np.asarray(is_vertex[touch] & (touch != np.arange(len(touch))[:, None]))
+
+
+def _convex_ends(boundary: Boundary) -> BoolArray:
+    """For each edge, whether its low / high parameter end is a convex corner (a joint
+    turning by less than the boundary's angle tolerance is smooth: no corner there)."""
+    out = np.zeros((len(boundary.elements), 2), dtype=bool)
+    lengths = np.asarray(boundary.loop_lengths)
+    by_loop: dict[int, FloatArray] = {}
+    for lp in range(len(lengths)):
+        by_loop[lp] = np.array(
+            [c.s for c in boundary.corners if c.loop == lp and c.turn > 0], dtype=float
+        )
+    for e in boundary.elements:
+        cs = by_loop[e.loop]
+        if e.piece is None or len(cs) == 0:
+            continue
+        length = lengths[e.loop]
+        for k, s in enumerate((e.s0, e.s0 + e.length)):
+            d = np.remainder(cs - s + 0.5 * length, length) - 0.5 * length
+            if np.any(np.abs(d) <= 1e-12 * length):
+                # k = 0: the loop start of the element, its t0 end
+                side = k if e.piece.t1 > e.piece.t0 else 1 - k
+                out[e.index, side] = True
+    return out
 
 
 def _dot(a: FloatArray, b: FloatArray) -> FloatArray:
@@ -645,7 +671,7 @@ def _joint_seeds(
     boundary: Boundary, C: Candidates, g: int, rows: IntArray, R: _Rows
 ) -> tuple[IntArray, IntArray, FloatArray]:
     """Newton seeds on general element ``g`` for the samples ``rows`` whose own element
-    meets it at a corner: ``(rows, end candidate, start parameter)``, the start as far
+    meets it at a convex corner: ``(rows, end candidate, start parameter)``, the start as far
     from the joint along ``g`` as the sample is from it (where the spoke of a nearly
     flat convex corner finds its partner), within the candidate cell at that end.
     There the partner lies within a fraction of a cell of the joint, and the
@@ -664,7 +690,9 @@ def _joint_seeds(
     out_r, out_j, out_t = [], [], []
     # candidates run from t0 to t1; side 0 is the low parameter end
     for side, end in ((0, first if increasing else last), (1, last if increasing else first)):
-        at = np.nonzero((C.touch[ei, side] == o) & (o != ei) & ~C.reflex_end[ei, side])[0]
+        if not C.convex_end[ei, side]:
+            continue  # (a smooth joint: its candidates see the partners there)
+        at = np.nonzero((C.touch[ei, side] == o) & (o != ei))[0]
         if len(at) == 0:
             continue
         inner = end + 1 if end == first else end - 1
