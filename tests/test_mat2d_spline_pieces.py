@@ -110,3 +110,18 @@ def test_joint_seeds_run_only_at_convex_corners() -> None:
     pf = planar_face(disk)
     C = build_candidates(build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=1e-6), 0.1)
     assert not C.convex_end.any()
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=medialcad.errors.ComputationError,
+    reason="known: near-circular loops of many pieces are refused (README 'Known limits')",
+)
+def test_near_circular_loop_of_30_pieces_is_refused() -> None:
+    """Open: a loop of 30 spline pieces on a nearly circular outline (r = 0.74997), drawn
+    by ``bspline_chain`` in CI's derandomized run (kept exactly as binary BREP). Its
+    branch points crowd within a tolerance of each other near the centre, where the map
+    is ill-conditioned (r ~ 1/k along every piece); the fit does not converge and the
+    face is refused, an error rather than a wrong answer."""
+    face = F.read_exact("chain_near_circular_30_pieces.bbrep")
+    check_with_oracles(face, "chain, near-circular", n_boundary=80, per_branch=12)
