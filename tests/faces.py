@@ -355,6 +355,25 @@ def spline_pieces(n: int, bulge: float = 0.02, size: float = 50.0) -> TopoDS_Fac
     return _face(cq.Wire.assembleEdges(edges))
 
 
+def near_circle_pieces(n: int, amp: float, k: int, seed: int = 0) -> TopoDS_Face:
+    """A nearly circular outline (``r = 0.75 (1 + amp cos(k t + p))``) written as ``n``
+    B-spline edges through 3 of its points each, the joints jittered by up to a fifth of a
+    piece (a fixed pseudo-random draw per ``seed``): its medial axis is a tree of
+    branches crowding within ``~amp k^2`` of the centre, the spokes nearly parallel to
+    them, the map ill-conditioned (``r ~ 1/k`` along every piece)."""
+    rng = np.random.default_rng(seed)
+    phase = 2 * math.pi * rng.random()
+
+    def p(a: float) -> cq.Vector:
+        r = 0.75 * (1 + amp * math.cos(k * a + phase))
+        return cq.Vector(r * math.cos(a), r * math.sin(a), 0.0)
+
+    t = 2 * math.pi * (np.arange(n) + rng.uniform(-0.2, 0.2, n)) / n
+    tm = t + 0.5 * np.diff(np.r_[t, t[0] + 2 * math.pi])
+    edges = [cq.Edge.makeSpline([p(t[i]), p(tm[i]), p(t[(i + 1) % n])]) for i in range(n)]
+    return _face(cq.Wire.assembleEdges(edges))
+
+
 def with_seam_at(face: TopoDS_Face, t: float, relative: bool = False) -> TopoDS_Face:
     """The face bounded by one periodic B-spline edge, with the curve's seam moved to its
     parameter ``t`` (``relative``: that fraction of the way along its range; a knot

@@ -1623,11 +1623,14 @@ def _fit_check(tr: _Tracer, S: MapSamples, iv: _Interval) -> _FitCheck | None:
     rows = np.nonzero(first)[0]
     mids = (lo[:, None] + width[:, None] * frac)[first]
     # round a node merged from several events (3 spreads, at most the merge radius) the
-    # node's own displacement rules the fit, not the check points
+    # node's own displacement rules the fit, not the check points; a chain of events
+    # merged one to the next can lie farther than the merge radius from the node's
+    # point, and the branch's last step, bent from its own event (up to a spread away)
+    # to that point, is not checked within two spreads either
     tol = tr.cfg.tol
     merge = max(tol, 10 * tr.cfg.eps_s)
     ends = tuple(
-        (ev.point, _node_reach(ev, _THIN_GAP * tol, merge))
+        (ev.point, max(_node_reach(ev, _THIN_GAP * tol, merge), 2.0 * ev.spread))
         for ev in (iv.start, iv.end)
         if ev is not None and ev.spread > 0
     )
