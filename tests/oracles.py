@@ -747,34 +747,56 @@ class FaceBoundary:
         best = math.inf
         inf = math.inf
         # every pair of the edges near p: its foot's own, or two others (a foot on a tiny
-        # fillet rounding the corner: the spoke beyond its centre is the sides' bisector)
-        cands = [(i, t), *self._second_edges(p, i)]
+        # fillet rounding the corner: the spoke beyond its centre is the sides' bisector),
+        # and a second foot on the foot's own edge (a branch off a curvature maximum of a
+        # nearly circular outline: its spokes nearly parallel to it, the ray depth
+        # magnifies an offset across it ten times over)
+        cands = [(i, t), *self._second_edges(p, i), *self._same_edge_feet(p, i, t)]
         for (i, t), (j, tj) in itertools.combinations(cands, 2):
             # the feet may leave the edges while Newton runs (``p`` off the spoke has
             # its foot beyond the corner on one side): project onto the curves' extensions
-            params = {i: t, j: tj}
+            params = [t, tj]
 
-            def foot(x: FloatArray, k: int, params: dict[int, float] = params) -> FloatArray:
-                _, q, params[k] = self._project_local(x, k, params[k], -inf, inf)
+            def foot(x: FloatArray, k: int, e: int, params: list[float] = params) -> FloatArray:
+                _, q, params[k] = self._project_local(x, e, params[k], -inf, inf)
                 return q
 
             c, _ = equidistant_point(
                 np.asarray(p, dtype=float),
-                lambda x, i=i: foot(x, i),
-                lambda x, j=j: foot(x, j),
+                lambda x, i=i: foot(x, 0, i),
+                lambda x, j=j: foot(x, 1, j),
                 self.eps,
                 self.diag,
             )
-            ti, tj = params[i], params[j]
-            di, _, ti = self._project_local(c, i, ti, -inf, inf)
-            dj, _, tj = self._project_local(c, j, tj, -inf, inf)
+            di, qi, ti = self._project_local(c, i, params[0], -inf, inf)
+            dj, qj, tj = self._project_local(c, j, params[1], -inf, inf)
             # a tangent contact inside each edge, and the disk empty
             if not (self._inside_range(i, ti) and self._inside_range(j, tj)):
                 continue
             if abs(di - dj) > self.eta or self.nearest(c)[0] < di - self.eta:
                 continue
+            # two distinct feet (on one edge both projections may slide to the same one)
+            if i == j and float(np.linalg.norm(qi - qj)) < 0.05 * di:
+                continue
             best = min(best, float(np.linalg.norm(np.asarray(p) - c)))
         return best
+
+    def _same_edge_feet(self, p: FloatArray, i: int, t: float) -> list[tuple[int, float]]:
+        """``(i, parameter)`` of the samples of edge ``i`` where the distance to ``p`` has a
+        local minimum within 1.5 times ``p``'s distance to the boundary, other than the
+        one nearest ``t`` (the foot's own)."""
+        x = np.asarray(p, dtype=float)
+        sel = np.flatnonzero(self._sedge == i)
+        if len(sel) < 3:
+            return []
+        dist = np.linalg.norm(self._spts[sel] - x, axis=1)
+        inner = (dist[1:-1] <= dist[:-2]) & (dist[1:-1] <= dist[2:])
+        minima = np.flatnonzero(inner) + 1
+        if len(minima) < 2:
+            return []
+        own = minima[int(np.argmin(np.abs(self._spar[sel][minima] - t)))]
+        limit = 1.5 * float(dist.min()) + self._sh
+        return [(i, float(self._spar[sel][k])) for k in minima if k != own and dist[k] <= limit]
 
     def _inside_range(self, i: int, t: float) -> bool:
         c = self.curves[i]

@@ -205,3 +205,20 @@ def test_curvature_ends_do_not_depend_on_where_a_closed_curve_has_its_seam(seam:
     assert len(before) == len(after) == 6
     gap = np.linalg.norm(before[:, None, :] - after[None, :, :], axis=2)
     assert gap.min(axis=1).max() < 1e-6 and gap.min(axis=0).max() < 1e-6
+
+
+def test_soundness_across_a_branch_of_a_nearly_circular_outline() -> None:
+    """Near the centre of a nearly circular outline (20 spline pieces) the branches run
+    nearly parallel to their spokes, and the ray depth magnifies an offset across them
+    several times over (half a tolerance read 1.8 tol): the bisector of the two feet on
+    the same edge resolves it. True medial points read below half the tolerance, a step
+    of half a tolerance across the spoke reads about that."""
+    fb = O.FaceBoundary(F.near_circle_pieces(20, 1e-4, 3))
+    tol = 1e-5 * fb.diag
+    b, m, _ = O.medial_points_2d(fb, 40)
+    u = (b - m) / np.linalg.norm(b - m, axis=1)[:, None]
+    across = np.c_[-u[:, 1], u[:, 0], 0 * u[:, 0]]
+    assert O.soundness_2d(fb, m, tol).max() < 0.5 * tol
+    delta = 0.5 * tol
+    err = O.soundness_2d(fb, m + delta * across, tol)
+    assert np.all(err > 0.5 * delta) and np.all(err < 1.5 * delta)
