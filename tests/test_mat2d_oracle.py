@@ -173,11 +173,6 @@ def test_random_line_arc_fillet_mix(face: Any, seed: int) -> None:
 HYPO_CHAIN = settings(HYPO, max_examples=max(2, HYPO.max_examples // 5))
 
 
-@pytest.mark.skipif(
-    not os.environ.get("MEDIALCAD_HYPOTHESIS_RANDOM"),
-    reason="long fuzzing run only (scripts/fuzz.sh): it still draws near-circular loops, "
-    "refused (test_near_circular_loop_of_30_pieces_is_refused, README 'Known limits')",
-)
 @HYPO_CHAIN
 @given(face=F.bspline_chain(), seed=st.integers(0, 2**16))
 def test_random_bspline_chain(face: Any, seed: int) -> None:
