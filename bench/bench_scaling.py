@@ -1,12 +1,14 @@
 """How time and peak memory grow with the size of the input.
 
 - 2D engine on star-shaped polygons with 10, 100, 1,000, 10,000 boundary edges;
+- 2D engine on the same star written as 10 to 200 three-point B-spline pieces (how other
+  CAD systems often write one smooth curve);
 - 3D (extrusion) on gear wheels with 10 to 200 teeth.
 
 Each case runs in its own process (peak RSS from ``resource``), with a time budget per
 case: sizes beyond the budget are reported as such, not silently dropped.
 
-    python bench/bench_scaling.py [--budget 120] [--only 2d|3d] [--out bench/results_scaling.md]
+    python bench/bench_scaling.py [--budget 120] [--only 2d|2dspline|3d] [--out bench/results_scaling.md]
 
 With ``--only``, the rows of the other kind are kept from the existing results file.
 """
@@ -27,13 +29,20 @@ import json, math, resource, sys, time
 sys.path.insert(0, {root!r})
 import cadquery as cq
 kind, n = sys.argv[1], int(sys.argv[2])
-if kind == "2d":
-    pts = []
-    for i in range(n):
-        a = 2 * math.pi * i / n
-        r = 50 * (1 + 0.15 * math.sin(7 * a) + 0.05 * math.sin(23 * a))
-        pts.append((r * math.cos(a), r * math.sin(a)))
-    face = cq.Face.makeFromWires(cq.Workplane().polyline(pts).close().val())
+def star(a):
+    r = 50 * (1 + 0.15 * math.sin(7 * a) + 0.05 * math.sin(23 * a))
+    return cq.Vector(r * math.cos(a), r * math.sin(a), 0)
+if kind in ("2d", "2dspline"):
+    if kind == "2d":
+        pts = [star(2 * math.pi * i / n) for i in range(n)]
+        face = cq.Face.makeFromWires(cq.Workplane().polyline(pts).close().val())
+    else:
+        a = [2 * math.pi * i / n for i in range(n + 1)]
+        edges = [
+            cq.Edge.makeSpline([star(a[i]), star(0.5 * (a[i] + a[i + 1])), star(a[(i + 1) % n])])
+            for i in range(n)
+        ]
+        face = cq.Face.makeFromWires(cq.Wire.assembleEdges(edges))
     from medialcad import medial_axis_2d
     t0 = time.perf_counter()
     m = medial_axis_2d(face)
@@ -58,6 +67,10 @@ print(json.dumps(out))
 """
 
 
+LABELS = {"2d": "2D polygon edges", "2dspline": "2D spline pieces", "3d": "3D gear teeth"}
+SIZES = {"2d": (10, 100, 1000, 10000), "2dspline": (10, 30, 100, 200), "3d": (10, 25, 50, 100, 200)}
+
+
 def run_case(kind: str, n: int, budget: float) -> dict:
     code = WORKER.format(root=str(ROOT))
     try:
@@ -78,7 +91,7 @@ def run_case(kind: str, n: int, budget: float) -> dict:
 
 def _previous_rows(path: Path, kind: str) -> list[dict]:
     """The rows of ``kind`` in an existing results table (kept by ``--only``)."""
-    label = "2D polygon edges" if kind == "2d" else "3D gear teeth"
+    label = LABELS[kind]
     rows: list[dict] = []
     if not path.exists():
         return rows
@@ -97,10 +110,10 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--budget", type=float, default=120.0, help="seconds per case")
     ap.add_argument("--out", default=str(ROOT / "bench" / "results_scaling.md"))
-    ap.add_argument("--only", choices=("2d", "3d"), help="run one kind only")
+    ap.add_argument("--only", choices=tuple(LABELS), help="run one kind only")
     args = ap.parse_args()
     rows = []
-    for kind, sizes in (("2d", (10, 100, 1000, 10000)), ("3d", (10, 25, 50, 100, 200))):
+    for kind, sizes in SIZES.items():
         if args.only is not None and kind != args.only:
             rows += _previous_rows(Path(args.out), kind)
             continue
@@ -113,7 +126,7 @@ def main() -> None:
             rows.append(r)
             prev = r
             print(json.dumps(r), flush=True)
-    rows.sort(key=lambda r: r["kind"])  # 2D rows first, as without --only
+    rows.sort(key=lambda r: list(LABELS).index(r["kind"]))  # in LABELS' order, as without --only
     lines = [
         "| case | n | status | time s | peak RSS MB | growth exponent |",
         "|---|---|---|---|---|---|",
@@ -126,7 +139,7 @@ def main() -> None:
             exp = f"{math.log(r['time'] / p['time']) / math.log(r['n'] / p['n']):.2f}"
         if r.get("status") == "ok":
             last[r["kind"]] = r
-        label = "2D polygon edges" if r["kind"] == "2d" else "3D gear teeth"
+        label = LABELS[r["kind"]]
         lines.append(
             f"| {label} | {r['n']} | {r['status']} | {r.get('time', float('nan')):.2f} | "
             f"{r.get('peak_rss_mb', float('nan')):.0f} | {exp} |"
