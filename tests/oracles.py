@@ -776,7 +776,7 @@ class FaceBoundary:
             if abs(di - dj) > self.eta or self.nearest(c)[0] < di - self.eta:
                 continue
             # two distinct feet (on one edge both projections may slide to the same one)
-            if i == j and float(np.linalg.norm(qi - qj)) < 0.05 * di:
+            if i == j and float(np.linalg.norm(qi - qj)) < 100.0 * self.eta:
                 continue
             best = min(best, float(np.linalg.norm(np.asarray(p) - c)))
         return best
@@ -790,13 +790,18 @@ class FaceBoundary:
         if len(sel) < 3:
             return []
         dist = np.linalg.norm(self._spts[sel] - x, axis=1)
+        par = self._spar[sel]
+        # both feet within a sample cell of each other (a short branch into a flat
+        # curvature maximum between them): seeds a fraction of the cell to either side
+        cell = float(np.median(np.abs(np.diff(par))))
+        near = [(i, t + s * f * cell) for f in (0.5, 0.2, 0.05) for s in (-1.0, 1.0)]
         inner = (dist[1:-1] <= dist[:-2]) & (dist[1:-1] <= dist[2:])
         minima = np.flatnonzero(inner) + 1
         if len(minima) < 2:
-            return []
-        own = minima[int(np.argmin(np.abs(self._spar[sel][minima] - t)))]
+            return near
+        own = minima[int(np.argmin(np.abs(par[minima] - t)))]
         limit = 1.5 * float(dist.min()) + self._sh
-        return [(i, float(self._spar[sel][k])) for k in minima if k != own and dist[k] <= limit]
+        return near + [(i, float(par[k])) for k in minima if k != own and dist[k] <= limit]
 
     def _inside_range(self, i: int, t: float) -> bool:
         c = self.curves[i]

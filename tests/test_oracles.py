@@ -222,3 +222,22 @@ def test_soundness_across_a_branch_of_a_nearly_circular_outline() -> None:
     delta = 0.5 * tol
     err = O.soundness_2d(fb, m + delta * across, tol)
     assert np.all(err > 0.5 * delta) and np.all(err < 1.5 * delta)
+
+
+@pytest.mark.parametrize("pl", PLACEMENTS)
+def test_soundness_across_the_axis_next_to_an_ellipses_curvature_centre(
+    pl: F.Placement,
+) -> None:
+    """On a nearly circular ellipse the two feet of an axis point lie either side of the
+    vertex, the disks nearly osculate round it and the spokes nearly parallel the axis.
+    A step across the axis reads its true size (the distance to the axis), neither
+    magnified by the ray depth nor hidden by the bisector refinement (which now pairs
+    feet on one edge as close as ``100 eta``, seeded within a sample cell of the own)."""
+    a, b = 1.01, 1.0  # nearly a circle: the disks nearly osculate round the vertex
+    c = (a * a - b * b) / a
+    fb = O.FaceBoundary(F.place(F.ellipse(a, b), pl))
+    tol = 1e-5 * fb.diag
+    xs = c * np.array([0.0, 0.5, 0.9, 0.99])
+    for delta in (0.5 * tol, 3.0 * tol):
+        err = O.soundness_2d(fb, pl.to_model(np.c_[xs, delta + 0 * xs]), tol)
+        assert np.all(err > 0.7 * delta) and np.all(err < 1.3 * delta), err / delta

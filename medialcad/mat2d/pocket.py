@@ -5,8 +5,9 @@ Such a branch (a blob's maximum 1e-3 wide between two feet of a branch point, th
 ~10 tol long) has few samples or none: the tracer's samples there osculate, and a
 spline through its ends is off by several tol (the branch bends). Its rows are solved
 here from the boundary stretch itself: each from a foot on either half of the stretch
-(the least tangent-disk radius over the other half, a bounded Brent search), from the
-half whose foot moves more; they are parametrized by how far their feet are from the
+(the least tangent-disk radius over the other half: a grid, then golden sections on
+the bracket around its least sample, all rows of a round at once), from the half whose
+foot moves more; they are parametrized by how far their feet are from the
 maximum (both move away from it monotonically) and refined until the interpolated rows
 are within 0.1 tol (centres and radii) and 0.02 tol (feet) of exact ones. Both the 2D
 graph (its branch) and the 3D segments (their rows) take them.
@@ -97,30 +98,57 @@ def pocket_rows(boundary: Boundary, bp: Node, cc: Node, tol: float) -> PocketRow
     span = (t_cc - ta_end) + (tb_end - t_cc)
     curve = e.piece.curve
 
-    def point(t: float) -> FloatArray:
-        return np.asarray(curve.point(np.array([wrap(t)]))[0], dtype=float)
+    def points(t: FloatArray) -> FloatArray:
+        t = np.asarray(t, dtype=float)
+        return np.asarray(curve.point(t if period is None else t0 + (t - t0) % period))
+
+    def integral(a: FloatArray, b: FloatArray) -> FloatArray:
+        half = 0.5 * (b - a)
+        s = (a + half)[..., None] + half[..., None] * _GAUSS_X
+        flat = s.ravel()
+        d1 = np.asarray(curve.derivs(flat if period is None else t0 + (flat - t0) % period)[1])
+        d1 = d1.reshape(*s.shape, 2)
+        return np.asarray(np.einsum("mkgj,g->mkj", d1, _GAUSS_W) * half[..., None])
+
+    def chords(t: FloatArray, u: FloatArray) -> FloatArray:
+        """``C(u) - C(t)`` for ``t (m,)`` and ``u (m, k)``: the integral of ``C'``
+        (Gauss-Legendre), exact to rounding relative to the chord itself (the difference
+        of two points is exact only relative to the coordinates); split at a closed
+        curve's seam, where the speed may jump."""
+        a = np.broadcast_to(t[:, None], u.shape)
+        if period is None:
+            return integral(a, u)
+        lo_, hi_ = np.minimum(a, u), np.maximum(a, u)
+        seam = t0 + period * np.ceil((lo_ - t0) / period)
+        cut = np.where((lo_ < seam) & (seam < hi_), seam, u)
+        return integral(a, cut) + integral(cut, u)
 
     memo: dict[tuple[float, bool], _PocketRow | None] = {}
 
-    def solve(t: float, side_a: bool) -> _PocketRow | None:
-        """The row whose foot on one half is ``t`` (its partner on the other half);
+    def solve(queries: list[tuple[float, bool]]) -> list[_PocketRow | None]:
+        """The rows whose foot on one half (side a when the flag is set) is at each
+        query's parameter (their partners on the other half), solved together per half;
         remembered: a midpoint whose row was not taken is asked again next round."""
-        key = (t, side_a)
-        if key not in memo:
-            memo[key] = _solve(t, side_a)
-        return memo[key]
-
-    def _solve(t: float, side_a: bool) -> _PocketRow | None:
-        other = (t_cc, tb_end) if side_a else (ta_end, t_cc)
-        x, r = _tangent_partner(boundary, e, wrap(t), point, other)
-        if x is None or not cc.radius <= r <= bp.radius:
-            # beyond the stretch, or larger than the branch point's disk (not maximal:
-            # it reaches past the node's other feet)
-            return None
-        bq, nq, _ = boundary.frame_at(e, np.array([wrap(t)]))
-        ta, tb = (t, x) if side_a else (x, t)
-        fa_, fb_ = (bq[0], point(x)) if side_a else (point(x), bq[0])
-        return _PocketRow((tb - ta) / span, ta, tb, bq[0] + r * nq[0], r, fa_, fb_)
+        for side_a in (True, False):
+            ts = np.array(sorted({t for t, a in queries if a == side_a and (t, a) not in memo}))
+            if len(ts) == 0:
+                continue
+            bq, nq, _ = boundary.frame_at(e, np.array([wrap(t) for t in ts]))
+            xs, rs = _tangent_partners(bq, nq, ts, chords, t_cc, tb_end if side_a else ta_end)
+            fx = points(np.where(np.isfinite(xs), xs, t_cc))
+            for i, t in enumerate(ts):
+                x, r = xs[i], rs[i]
+                if not np.isfinite(x) or not cc.radius <= r <= bp.radius:
+                    # beyond the stretch, or larger than the branch point's disk (not
+                    # maximal: it reaches past the node's other feet)
+                    memo[(t, side_a)] = None
+                    continue
+                ta, tb = (t, x) if side_a else (x, t)
+                fa_, fb_ = (bq[i], fx[i]) if side_a else (fx[i], bq[i])
+                memo[(t, side_a)] = _PocketRow(
+                    (tb - ta) / span, ta, tb, bq[i] + r * nq[i], r, fa_, fb_
+                )
+        return [memo[q] for q in queries]
 
     tip = np.asarray(cc.footpoints[0].point_2d, dtype=float)
     rows = [
@@ -128,13 +156,10 @@ def pocket_rows(boundary: Boundary, bp: Node, cc: Node, tol: float) -> PocketRow
         _PocketRow(1.0, ta_end, tb_end, np.asarray(bp.point_2d, float), bp.radius,
                    np.asarray(fa.point_2d, float), np.asarray(fb.point_2d, float)),
     ]  # fmt: skip
-    for g in np.arange(1, 8) / 8.0:
-        for row in (
-            solve(t_cc + (ta_end - t_cc) * g, True),
-            solve(t_cc + (tb_end - t_cc) * g, False),
-        ):
-            if row is not None:
-                rows.append(row)
+    grid = np.arange(1, 8) / 8.0
+    first = [(float(t_cc + (ta_end - t_cc) * g), True) for g in grid]
+    first += [(float(t_cc + (tb_end - t_cc) * g), False) for g in grid]
+    rows += [row for row in solve(first) if row is not None]
     rows = _monotone(rows, span)
     for _ in range(24):
         if len(rows) >= 400:
@@ -145,16 +170,24 @@ def pocket_rows(boundary: Boundary, bp: Node, cc: Node, tol: float) -> PocketRow
         ds = np.diff(s)
         beside = np.minimum(np.r_[np.inf, ds[:-1]], np.r_[ds[1:], np.inf])
         new: list[_PocketRow] = []
-        for j in range(len(rows) - 1):
+        spans = [j for j in range(len(rows) - 1) if ds[j] >= 1e-9]
+        asks: list[list[tuple[float, bool]]] = []
+        for j in spans:
             lo_row, hi_row = rows[j], rows[j + 1]
-            if ds[j] < 1e-9:
-                continue
-            side_a = abs(hi_row.ta - lo_row.ta) >= abs(hi_row.tb - lo_row.tb)
-            row = None
-            for a in (side_a, not side_a):  # the other half where the partner is at its end
-                row = solve(0.5 * ((lo_row.ta + hi_row.ta) if a else (lo_row.tb + hi_row.tb)), a)
-                if row is not None:
-                    break
+            side_a = bool(abs(hi_row.ta - lo_row.ta) >= abs(hi_row.tb - lo_row.tb))
+            # the other half where the partner is at its end
+            asks.append(
+                [
+                    (0.5 * ((lo_row.ta + hi_row.ta) if a else (lo_row.tb + hi_row.tb)), a)
+                    for a in (side_a, not side_a)
+                ]
+            )
+        got_rows = solve([q[0] for q in asks])
+        again = [k for k, row in enumerate(got_rows) if row is None]
+        for k, row in zip(again, solve([asks[k][1] for k in again]), strict=True):
+            got_rows[k] = row
+        for j, row in zip(spans, got_rows, strict=True):
+            lo_row, hi_row = rows[j], rows[j + 1]
             if row is None or not lo_row.s < row.s < hi_row.s or row.s >= s[j + 1]:
                 continue
             got = fit(row.s)
@@ -233,31 +266,62 @@ def _monotone(rows: list[_PocketRow], span: float) -> list[_PocketRow]:
     return [*out, last]
 
 
-def _tangent_partner(
-    boundary: Boundary,
-    e: Element,
-    t: float,
-    point: Callable[[float], FloatArray],
-    other: tuple[float, float],
-) -> tuple[float | None, float]:
-    """The disk tangent to element ``e`` at parameter ``t`` (inside) that touches the curve
-    again between parameters ``other``: the partner's parameter and the radius, the least
-    ``|q - b|^2 / (2 (q - b).n)`` (a bounded Brent search over the offset from
-    ``other[0]``, so that its tolerance is relative to the stretch); ``None`` when the
-    least is at an end of the stretch (the partner is beyond it)."""
-    from scipy.optimize import minimize_scalar
+_GAUSS_X, _GAUSS_W = np.polynomial.legendre.leggauss(8)  # the chords' quadrature
+_GRID = 32  # bracketing samples of the stretch per partner search
+_GOLDEN_STEPS = 44  # golden-section steps from a bracket of 2/_GRID: below 1e-10 of it
 
-    bq, nq, _ = boundary.frame_at(e, np.array([t]))
-    lo, hi = sorted(other)
+
+def _tangent_partners(
+    bq: FloatArray,
+    nq: FloatArray,
+    tq: FloatArray,
+    chords: Callable[[FloatArray, FloatArray], FloatArray],
+    near: float,
+    far: float,
+) -> tuple[FloatArray, FloatArray]:
+    """The disks tangent to the curve at points ``bq`` (inward normals ``nq``) that touch
+    it again between parameters ``near`` (the maximum) and ``far`` (the branch point's
+    foot): the partners' parameters and the radii, the least ``|q - b|^2 / (2 (q - b).n)``
+    over the stretch (all searched together: the least of a grid, then golden sections
+    on the bracket around it, so that the tolerance is relative to the stretch).
+
+    NaN where no point of the stretch is on the inner side, or where the least is at
+    ``near`` (the partner is on the foot's own half). A least at ``far`` is taken there:
+    the branch point's feet are only known to about the tolerance along the stretch
+    (the radius is stationary in them), so the rows next to it touch the curve at its
+    foot or just past it, with a radius between the maximum's and the node's (checked
+    by the caller)."""
+    lo, hi = sorted((near, far))
     width = hi - lo
+    m = len(bq)
 
-    def f(y: float) -> float:
-        q = point(lo + y) - bq[0]
-        h = float(q @ nq[0])
-        return float(q @ q) / (2.0 * h) if h > 0 else np.inf
+    def f(y: FloatArray) -> FloatArray:  # y (m, k) offsets from lo
+        q = chords(tq, lo + y)
+        h = np.einsum("mkj,mj->mk", q, nq)
+        qq = np.einsum("mkj,mkj->mk", q, q)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(h > 0.0, qq / (2.0 * h), np.inf)
 
-    res = minimize_scalar(f, bounds=(0.0, width), method="bounded", options={"xatol": 1e-15})
-    y, r = float(res.x), float(res.fun)
-    if not (np.isfinite(r) and 1e-7 * width < y < width * (1.0 - 1e-7)):
-        return None, np.nan
-    return lo + y, r
+    grid = np.linspace(0.0, width, _GRID + 1)
+    fg = f(np.broadcast_to(grid, (m, _GRID + 1)))
+    k = np.argmin(fg, axis=1)
+    a = grid[np.maximum(k - 1, 0)]
+    b = grid[np.minimum(k + 1, _GRID)]
+    g = 0.5 * (np.sqrt(5.0) - 1.0)
+    c, d = b - g * (b - a), a + g * (b - a)
+    fcd = f(np.column_stack([c, d]))
+    fc, fd = fcd[:, 0], fcd[:, 1]
+    for _ in range(_GOLDEN_STEPS):
+        left = fc <= fd  # the least is in [a, d]
+        b = np.where(left, d, b)
+        a = np.where(left, a, c)
+        c_new = np.where(left, b - g * (b - a), d)
+        d_new = np.where(left, c, a + g * (b - a))
+        fn = f(np.where(left, c_new, d_new)[:, None])[:, 0]
+        fc, fd = np.where(left, fn, fd), np.where(left, fc, fn)
+        c, d = c_new, d_new
+    y = np.where(fc <= fd, c, d)
+    r = np.minimum(fc, fd)
+    off = y if near == lo else width - y  # from the maximum
+    ok = np.isfinite(r) & (off > 1e-7 * width)
+    return np.where(ok, lo + y, np.nan), np.where(ok, r, np.nan)
