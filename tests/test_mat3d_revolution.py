@@ -13,7 +13,8 @@
   the independent oracles of :mod:`tests.oracles3d` (soundness, completeness, radius,
   topology), ``BRepCheck`` and the free edges (sheets sewn, seams bounding 3 sheets).
 * **Small angles**: the mid sheet exists exactly below ``Theta = 2 asin(Rmax / x)``.
-* **Refusals**: a partial revolution of a profile touching its axis (a pie slice).
+* **Pie slices** (a partial revolution of a profile touching its axis): closed forms of
+  polygons and a spherical wedge, random profiles; refused beyond 180 degrees.
 * **Random profiles** (hypothesis): faces of :mod:`tests.faces` revolved by a random angle
   about a random axis; B-spline profiles.
 
@@ -38,7 +39,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import HealthCheck, Phase, assume, given, settings
 from hypothesis import strategies as st
 from numpy.typing import ArrayLike, NDArray
 from OCP.Bnd import Bnd_Box
@@ -1031,21 +1032,135 @@ def _sector_outline() -> FloatArray:
 # --------------------------------------------------------------------------- refusals
 
 
-def test_pie_slice_is_refused() -> None:
-    """A partial revolution of a profile touching its axis (a slice of a cone, which is not
-    an extrusion) is refused with a message that names the problem."""
-    solid = revolve(F.polygon([(0, 0), (10, 0), (0, 25)]), 0.5 * math.pi)
-    with pytest.raises(UnsupportedSolidError, match=r"pie slice|touches its axis"):
+@pytest.mark.parametrize(
+    ("outline", "angle_deg"),
+    [
+        pytest.param([(0, 0), (10, 0), (0, 25)], 90.0, id="cone-90"),
+        pytest.param([(0, 0), (10, 0), (10, 6), (0, 6)], 60.0, id="short-cylinder-60"),
+        pytest.param([(0, 0), (10, 0), (10, 40), (0, 40)], 120.0, id="tall-cylinder-120"),
+        pytest.param([(0, 0), (12, 0), (7, 9), (0, 14)], 30.0, id="trapezoid-30"),
+        pytest.param(
+            [(0, 0), (8, 0), (8, 4), (3, 6), (8, 8), (8, 12), (0, 12)], 20.0, id="notched-20"
+        ),
+        pytest.param([(0, 0), (10, 0), (0, 25)], 180.0, id="half-cone-180"),
+    ],
+)
+def test_pie_slice_closed_form(outline: list[tuple[float, float]], angle_deg: float) -> None:
+    """A partial revolution of a polygon touching its axis (a pie slice, THEORY Sec. 2 with
+    the axis an edge of the solid): every sheet sample carries the closed-form ``D =
+    min(d(q), x sin(phi), x sin(Theta - phi))`` (``d`` to the profile's edges off the
+    axis) and has two distinct nearest boundary points; the mid sheet at ``Theta/2``
+    reaches the axis (no mid sheet at 180 degrees: the caps are one plane); closed-form
+    medial points of the caps and of the mid sheet lie on the output; one component, the
+    solid's Euler characteristic, valid, sewn."""
+    theta = math.radians(angle_deg)
+    prof = PolygonRevolution(np.array(outline, float), theta)
+    placement = F.random_placement(5, distance=100.0)
+    solid = revolve(F.polygon(prof.vertices), theta, placement)
+    m, num = mat_and_numbers(solid, f"pie slice {angle_deg:g}deg", n_complete=60)
+    assert m.kind == "revolution" and m.recognition.touches_axis
+    assert_oracles(num)
+    tol = m.tol
+    pts, rad, roles = sheet_samples(m, 12)
+    rho, y, phi = cylindrical(pts, placement, theta)
+    err, outside, single = prof.check_medial(rho, y, phi, rad, tol)
+    print(f"{len(rho)} sheet samples: |r - D| {err / tol:.1e} tol, {single} with one foot")
+    assert outside == 0 and single == 0, f"{outside} samples outside, {single} not medial"
+    assert err <= tol, f"radius vs closed-form distance: {err:.3g}"
+    assert ("mid" in roles) == (angle_deg < 180.0)
+    # closed-form medial points: profile points q at the cap angle asin(d/x) where d <= x
+    # sin(Theta/2), at Theta/2 beyond (the mid sheet), the axis edge itself excluded
+    rng = np.random.default_rng(2)
+    lo, hi = prof.vertices.min(axis=0), prof.vertices.max(axis=0)
+    q = rng.uniform(lo, hi, size=(400, 2))
+    q = q[prof.contains(q) & (q[:, 0] > 1e-3 * hi[0])][:60]
+    d = prof.profile_distance(q)[0].min(axis=1)
+    cap = d <= q[:, 0] * math.sin(theta / 2)
+    cphi = np.where(cap, np.arcsin(np.clip(d / q[:, 0], 0, 1)), theta / 2)
+    if angle_deg >= 180.0:
+        cphi, q = cphi[cap], q[cap]
+    cloud = np.vstack(
+        [
+            to_model(q[:, 0], q[:, 1], cphi, placement),
+            to_model(q[:, 0], q[:, 1], theta - cphi, placement),
+        ]
+    )
+    complete_against(f"pie slice {angle_deg:g}deg", m, cloud, tol)
+
+
+def test_pie_slice_of_a_stepped_shaft_and_a_spline_bulb() -> None:
+    """Pie slices of a stepped shaft (90 degrees) and of a B-spline profile touching its
+    axis at both ends (45 degrees): the oracles pass."""
+    radii, lengths = (15.0, 10.0, 6.0), (40.0, 60.0, 30.0)
+    ys = np.cumsum((0.0, *lengths))
+    outline = [(0.0, 0.0)]
+    for k, rk in enumerate(radii):
+        outline += [(rk, ys[k]), (rk, ys[k + 1])]
+    outline.append((0.0, ys[-1]))
+    solid = revolve(F.polygon(outline), 0.5 * math.pi, F.random_placement(13, distance=400.0))
+    _, num = mat_and_numbers(solid, "stepped shaft 90deg", n_complete=60)
+    assert_oracles(num)
+    solid = revolve(_bulb(), math.radians(45.0), F.random_placement(7, distance=100.0))
+    _, num = mat_and_numbers(solid, "bulb 45deg", n_complete=60)
+    assert_oracles(num)
+
+
+def _bulb() -> Any:
+    """A B-spline from ``(0, 0)`` to ``(0, 25)`` closed by the axis."""
+    import cadquery as cq
+
+    pts = [(0, 0), (6, 2), (8, 9), (3, 16), (4, 22), (0, 25)]
+    spline = cq.Edge.makeSpline([cq.Vector(x, y, 0) for x, y in pts])
+    axis = cq.Edge.makeLine(cq.Vector(0, 25, 0), cq.Vector(0, 0, 0))
+    return F._face(cq.Wire.assembleEdges([spline, axis]))
+
+
+def _half_disk(r: float) -> Any:
+    import cadquery as cq
+
+    top, bottom = cq.Vector(0, r, 0), cq.Vector(0, -r, 0)
+    arc = cq.Edge.makeThreePointArc(top, cq.Vector(r, 0, 0), bottom)
+    return F._face(cq.Wire.assembleEdges([cq.Edge.makeLine(bottom, top), arc]))
+
+
+@pytest.mark.parametrize("angle_deg", [60.0, 150.0])
+def test_spherical_wedge(angle_deg: float) -> None:
+    """A half disk revolved about its diameter by less than 180 degrees (a spherical
+    wedge, recognised from its sphere and two planes): two caps ``x sin(phi) = R - |q|``
+    meeting the planar mid sheet at ``Theta/2``, which reaches the axis. Every sheet
+    sample carries ``D = min(R - |q|, x sin(phi), x sin(Theta - phi))``."""
+    r, theta = 10.0, math.radians(angle_deg)
+    placement = F.random_placement(7, distance=100.0)
+    solid = revolve(_half_disk(r), theta, placement)
+    m, num = mat_and_numbers(solid, f"spherical wedge {angle_deg:g}deg", n_complete=60)
+    assert m.kind == "revolution" and m.recognition.angle == pytest.approx(theta)
+    assert_oracles(num)
+    assert sorted(s.role for s in m.sheets) == ["cap", "cap", "mid"]
+    pts, rad, _ = sheet_samples(m, 12)
+    rho, y, phi = cylindrical(pts, placement, theta)
+    dist = np.minimum.reduce([r - np.hypot(rho, y), rho * np.sin(phi), rho * np.sin(theta - phi)])
+    assert np.abs(rad - dist).max() <= m.tol
+
+
+def test_pie_slice_wider_than_180_degrees_is_refused() -> None:
+    """Beyond 180 degrees the axis of a pie slice is a reflex edge (its balls touch it):
+    refused with a message that names the problem."""
+    solid = revolve(F.polygon([(0, 0), (10, 0), (0, 25)]), math.radians(270.0))
+    with pytest.raises(UnsupportedSolidError, match=r"pie slice of 270 degrees"):
         api.medial_axis(solid)
 
 
-def test_quarter_cylinder_read_as_a_revolution_is_refused() -> None:
-    """A quarter cylinder is computed as an extrusion; its revolution reading (a pie slice)
-    is refused."""
+def test_quarter_cylinder_read_as_a_revolution_is_its_extrusion_mat() -> None:
+    """A quarter cylinder is computed as an extrusion; read as a pie slice it gives the
+    same medial axis: samples of either output lie within tol of the other."""
     solid = revolve(F.polygon([(0, 0), (10, 0), (10, 30), (0, 30)]), 0.5 * math.pi)
-    assert api.medial_axis(solid).kind == "extrusion"
-    with pytest.raises(UnsupportedSolidError, match=r"pie slice|touches its axis"):
-        revolution_mat(solid)
+    ext = api.medial_axis(solid)
+    assert ext.kind == "extrusion"
+    rev = revolution_mat(solid)
+    for a, b in ((ext, rev), (rev, ext)):
+        p, _, _ = sheet_samples(a, 10)
+        d = CompoundDistance(b.compound).distances(p)
+        assert d.max() <= a.tol + b.tol, f"{d.max() / a.tol:.2g} tol apart"
 
 
 # --------------------------------------------------------------------------- random profiles
@@ -1393,3 +1508,39 @@ def test_sheet_of_a_tiny_fillet_spoke_is_sound() -> None:
     pts2, _ = m.mat2d.sample(per_branch=200)
     close = np.linalg.norm(pts2[:, None, :] - centres[None, :, :], axis=2).min(axis=1) < 0.05
     assert O2.soundness_2d(fb, pts2[close], m.tol).max() <= m.tol
+
+
+# --------------------------------------------------------------------------- random pie slices
+
+
+@st.composite
+def _axis_profile(draw: st.DrawFn) -> Any:
+    """A random profile touching its axis along ``[0, H]``: a polygon through random
+    points ``(x_i, y_i)`` (``x_i > 0``, ``y`` increasing) closed by the axis, or a
+    B-spline through them."""
+    n = draw(st.integers(1, 5))
+    ys = np.sort(draw(st.lists(st.floats(0.05, 0.95), min_size=n, max_size=n, unique=True)))
+    xs = np.array(draw(st.lists(st.floats(0.15, 1.0), min_size=n, max_size=n)))
+    pts = [(0.0, 0.0), *zip(xs.tolist(), ys.tolist(), strict=True), (0.0, 1.0)]
+    if draw(st.booleans()):
+        return F.polygon(pts)
+    import cadquery as cq
+
+    spline = cq.Edge.makeSpline([cq.Vector(x, y, 0) for x, y in pts])
+    axis = cq.Edge.makeLine(cq.Vector(0, 1, 0), cq.Vector(0, 0, 0))
+    face = F._face(cq.Wire.assembleEdges([spline, axis]))
+    assume(F.is_valid(face))
+    return face
+
+
+@HYPO
+@given(
+    face=_axis_profile(),
+    angle=st.one_of(st.floats(math.radians(5), math.pi), st.just(math.pi)),
+    seed=st.integers(0, 2**16),
+)
+def test_random_pie_slice(face: Any, angle: float, seed: int) -> None:
+    solid = revolve(face, angle, F.random_placement(seed))
+    with F.dump_on_failure(solid, f"pie-slice-seed{seed}"):
+        _, num = mat_and_numbers(solid, f"pie slice {math.degrees(angle):.0f}deg", n_complete=60)
+        assert_oracles(num)

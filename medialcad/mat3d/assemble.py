@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Any
 
@@ -184,8 +184,12 @@ def build_grid_complex(
     mid_plane: tuple[FloatArray, FloatArray, FloatArray] | None,
     seam_roles: Callable[[Any], str | None],
     mid_slope: float = 0.0,
+    mid_rims: Sequence[tuple[FloatArray, FloatArray]] = (),
 ) -> tuple:
-    """Like :func:`build_complex` for tensor patches (revolutions)."""
+    """Like :func:`build_complex` for tensor patches (revolutions).
+
+    ``mid_rims`` are straight edges (end points) that bound the mid sheet besides the
+    offset rows (a pie slice's axis), keyed ``("AXR", k)``: ``seam_roles`` names them."""
     from medialcad.mat3d.revolution import interp_grid
     from medialcad.occ.complex import ComplexBuilder, Row
 
@@ -219,6 +223,12 @@ def build_grid_complex(
             e = cb.curve_edges.get(cb.side_key(col))
             if e is not None:
                 named_sides.append((e.edge, role, rad))
+    offsets = list(offsets)
+    for k, (p0, p1) in enumerate(mid_rims):
+        key = ("AXR", k)
+        cb.curve_edge(Row(key, _LINEAR, np.vstack([p0, p1]), 1))
+        row_radius[key] = (_LINEAR, 1, np.zeros(2))
+        offsets.append(key)
     if mid_plane is not None and offsets:
         # the mid sheet of a small-angle revolution lies in the half-plane at Theta/2: its
         # radius is x sin(Theta/2), x the distance from the axis = the plane's u

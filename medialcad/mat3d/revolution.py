@@ -32,7 +32,7 @@ from scipy.interpolate import make_interp_spline
 
 from medialcad.errors import UnsupportedSolidError
 from medialcad.mat2d.graph import NodeKind
-from medialcad.mat3d.segments import Segment, split_branches
+from medialcad.mat3d.segments import End, Segment, split_branches
 from medialcad.recognition import Revolution
 
 __all__ = ["revolution_parts"]
@@ -93,9 +93,11 @@ def _nv(span: float, x: float, tol: float) -> int:
 def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -> tuple:
     """Sheets, seams, skeletal edges, rims, junctions and the compound of a revolution."""
     full = reading.full
-    if reading.touches_axis and not full:
+    pie = reading.touches_axis and not full
+    if pie and reading.angle > math.pi + 1e-9:
         raise UnsupportedSolidError(
-            "a partial revolution of a profile that touches its axis (a pie slice) is not supported"
+            f"a pie slice of {math.degrees(reading.angle):.4g} degrees (a profile touching its"
+            " axis revolved by more than 180 degrees: the axis is a reflex edge) is not supported"
         )
     if reading.touches_axis:
         from medialcad.api import medial_axis_2d
@@ -103,7 +105,8 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
 
         mat2d = medial_axis_2d(mirrored_section(reading), tol=tol)
     cn = _Canon(reading, mat2d.frame)
-    theta = reading.angle
+    # a half turn read 1e-13 past 180 degrees is a half turn (its caps are one plane)
+    theta = math.pi if abs(reading.angle - math.pi) <= 1e-9 else reading.angle
     sigma = math.sin(theta / 2.0)
     mid = not full and theta <= math.pi
     graph, boundary = mat2d.graph, mat2d.boundary
@@ -116,8 +119,15 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         x = cn.xy(c)[:, 0]
         return np.asarray(np.where(np.abs(x) < 1e-9 * diag, 0.0, x))
 
+    def g_pie(c: FloatArray, r: FloatArray) -> FloatArray:
+        return np.asarray(g_level(c, r) * g_axis(c, r))
+
     level = g_level if mid and mat2d.rmax > 0 else (g_axis if reading.touches_axis else None)
+    if pie:
+        level = g_pie
     segments = split_branches(graph, boundary, level)
+    if pie:
+        segments = [_axis_ends(s, cn, tol) for s in segments]
     if not full:
         segments = [_angular_rows(s, cn, theta, tol) for s in segments]
     # one angular sampling for all patches, so that shared sides get identical samples
@@ -132,10 +142,13 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         jobs = []
         for seg in segments:
             c = cn.xy(seg.centre)
-            if reading.touches_axis and float(np.median(c[:, 0])) < 0:
+            if reading.touches_axis and _mirror_side(c, tol):
                 continue
+            c[:, 0] = np.maximum(c[:, 0], 0.0)
             high = mid and float(np.median(seg.radius - c[:, 0] * sigma)) > 0
             for foot in (seg.foot_a, seg.foot_b)[: 1 if seg.single else 2]:
+                if pie and not _profile_side(cn.xy(foot), tol):
+                    continue
                 jobs.append((seg, c, cn.xy(foot), seg.radius, theta, sigma, high))
         nv_cap = _cap_nv(cn, jobs, nv_cap, 0.05 * tol)
     grids: list[GridPatch] = []
@@ -146,12 +159,13 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         c = cn.xy(s.centre)
         r = s.radius
         if reading.touches_axis:
-            xm = float(np.median(c[:, 0]))
-            if float(np.abs(c[:, 0]).max()) <= 10 * tol:  # on the axis: a curve of the MAT
+            if float(np.abs(c[:, 0]).max()) <= 10 * tol and not pie:
+                # on the axis: a curve of the MAT (of a pie slice: its edge, where the mid
+                # sheet ends; the caps of the foot on the profile's side still stand on it)
                 if not s.single:
                     axis_lines.append((cn.model(c, np.zeros(len(c))), r, s.w))
                 continue
-            if xm < 0:
+            if _mirror_side(c, tol):
                 continue
             c[:, 0] = np.maximum(c[:, 0], 0.0)
         fa, fb = cn.xy(s.foot_a), cn.xy(s.foot_b)
@@ -163,6 +177,8 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         if not high and not s.single:
             _revolved_sheet(grids, junctions, cn, si, s, c, r, theta, nv_rev)
         sides = (("a", fa), ("b", fb))[: 1 if s.single else 2]
+        if pie:
+            sides = tuple((side, f) for side, f in sides if _profile_side(f, tol))
         for side, f in sides:
             _cap_sheets(grids, offsets, cn, si, side, s, c, f, r, theta, sigma, high, nv_cap)
     used = {n for b in graph.branches for n in (b.start, b.end) if n is not None}
@@ -172,6 +188,8 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         cc = cn.xy(nd.point_2d[None, :])[0]
         rr = float(nd.radius)
         if abs(cc[0]) <= 10 * tol:  # a ball centred on the axis (a sphere): one point
+            if pie:
+                continue  # of a pie slice: a point of its edge
             junctions.append((cn.model(np.array([0.0, cc[1]]), np.array(0.0)), rr))
             continue
         if cc[0] < 0:
@@ -193,9 +211,20 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     from medialcad.mat3d.assemble import build_grid_complex
 
     mid_plane = None
-    if mid and offsets:
+    mid_rims: list[tuple[FloatArray, FloatArray]] = []
+    # a pie slice of 180 degrees has its caps in one plane: the balls at Theta/2 beyond the
+    # level curve touch it at one point (on the axis), no mid sheet; its caps meet there
+    flat = pie and abs(theta - math.pi) <= 1e-9
+    if mid and offsets and not flat:
         a_mid = math.cos(theta / 2) * cn.A + math.sin(theta / 2) * cn.B
         mid_plane = (cn.O, a_mid, cn.D)
+    if pie and offsets and not flat:
+        # the mid sheet of a pie slice reaches the axis along the profile's edges there
+        from medialcad.occ.recognize import axis_intervals
+
+        for y0, y1 in axis_intervals(reading, 10 * tol):
+            ends = cn.model(np.array([[0.0, y0], [0.0, y1]]), np.zeros(2))
+            mid_rims.append((ends[0], ends[1]))
     return build_grid_complex(
         grids,
         offsets,
@@ -203,13 +232,22 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         axis_lines,
         diag=diag,
         mid_plane=mid_plane,
-        seam_roles=_roles,
+        seam_roles=_flat_roles if flat else _roles,
         mid_slope=sigma,
+        mid_rims=mid_rims,
     )
 
 
 def _roles(key: tuple) -> str | None:
-    return {"SB": "seam", "ST": "seam", "OFF": "seam", "F0": "rim", "FL": "rim"}.get(key[0])
+    return {"SB": "seam", "ST": "seam", "OFF": "seam", "F0": "rim", "FL": "rim", "AXR": "rim"}.get(
+        key[0]
+    )
+
+
+def _flat_roles(key: tuple) -> str | None:
+    """A 180-degree pie slice's start and end caps meet smoothly on the level curve (the
+    ``OFF`` rows): no seam there."""
+    return None if key[0] == "OFF" else _roles(key)
 
 
 def _end_role(s: Segment, which: int) -> str | None:
@@ -225,6 +263,30 @@ def _end_role(s: Segment, which: int) -> str | None:
         if end.node_kind is not None
         else None
     )
+
+
+def _mirror_side(c: FloatArray, tol: float) -> bool:
+    """Centres (canonical) of a segment on the mirror's side of the axis (one on the axis
+    is on the profile's side)."""
+    return float(np.abs(c[:, 0]).max()) > 10 * tol and float(np.median(c[:, 0])) < 0
+
+
+def _profile_side(feet: FloatArray, tol: float) -> bool:
+    """Feet (canonical) of a pie slice's cap on the profile's side of the axis. Feet on the
+    mirror's side belong to the mirror; feet all on the axis (a vertex of the profile
+    there) have ``d >= x`` everywhere, beyond every cap's level curve: their cap is empty."""
+    return float(np.max(feet[:, 0])) > 10 * tol
+
+
+def _axis_ends(s: Segment, cn: _Canon, tol: float) -> Segment:
+    """A pie slice's segment with its level ends on the axis (cuts where ``x = 0``, not
+    ``r = x sin(Theta/2)``) marked ``"axis"``: the caps' rulings there stop on the level
+    curve like anywhere else, they do not reach the centre."""
+    ends = []
+    for i, end in ((0, s.start), (-1, s.end)):
+        on_axis = abs(float(cn.xy(s.centre[i : i + 1 if i == 0 else None])[0, 0])) <= tol
+        ends.append(End("axis") if end.kind == "level" and on_axis else end)
+    return replace(s, start=ends[0], end=ends[1])
 
 
 def _angular_rows(s: Segment, cn: _Canon, theta: float, tol: float) -> Segment:
@@ -333,6 +395,9 @@ def _full_sheets(
         )
 
 
+_NEARLY_FLAT = 0.999  # sin(Theta/2) above which a cap meets its level curve steeply
+
+
 def _cap_grid(
     s: Segment,
     c: FloatArray,
@@ -343,8 +408,15 @@ def _cap_grid(
     high: bool,
     v: FloatArray,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Profile points ``q``, angles ``phi`` and distances ``d`` of a start cap grid."""
+    """Profile points ``q``, angles ``phi`` and distances ``d`` of a start cap grid.
+
+    With ``sigma`` next to 1 (a pie slice of nearly 180 degrees) the cap is nearly
+    tangent to the half-plane at ``Theta/2`` where it meets the level curve: ``phi =
+    asin(d/x)`` grows like a square root there, and the samples are spaced as ``v = 1 -
+    (1 - s)^2`` in the sheet's parameter ``s``, which makes ``phi`` smooth in ``s``."""
     n = len(c)
+    if sigma > _NEARLY_FLAT:  # every cap alike: caps that meet share their side columns
+        v = 1.0 - (1.0 - v) ** 2
     if high:
         # v* where the ruling meets the level curve d = x sigma
         den = r - (c[:, 0] - f[:, 0]) * sigma

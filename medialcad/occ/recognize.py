@@ -368,6 +368,12 @@ def _revolution_candidates(data: list[_FaceData]) -> list[tuple[FloatArray, Floa
                 cands.append((centre, _unit(spheres[1].axis[0] - centre)))  # type: ignore[index]
             for p in planes:
                 cands.append((centre, _unit(p.axis[1])))  # type: ignore[index]
+            # a spherical wedge: the axis is where its two caps' planes meet
+            for i, p in enumerate(planes[:8]):
+                for p2 in planes[i + 1 : 8]:
+                    d = np.cross(p.axis[1], p2.axis[1])  # type: ignore[index]
+                    if float(np.linalg.norm(d)) > 1e-6:
+                        cands.append((centre, _unit(d)))
             cands.append((centre, np.array([0.0, 0.0, 1.0])))
         else:
             fit = _plucker_axis(data)
@@ -582,8 +588,15 @@ def _full_section(
 
 
 def _touches_axis(profile: TopoDS_Face, frame: Frame, lin_tol: float) -> bool:
+    return bool(_axis_edges(profile, frame, 10 * lin_tol))
+
+
+def _axis_edges(profile: TopoDS_Face, frame: Frame, within: float) -> list[FloatArray]:
+    """The profile's edges on the axis (all sample points within ``within`` of it), each
+    as its sample points."""
     from OCP.BRepAdaptor import BRepAdaptor_Curve
 
+    out = []
     for e in edges(profile):
         if BRep_Tool.Degenerated_s(e):
             continue
@@ -591,9 +604,26 @@ def _touches_axis(profile: TopoDS_Face, frame: Frame, lin_tol: float) -> bool:
         ts = np.linspace(c.FirstParameter(), c.LastParameter(), 5)
         pts = np.array([_xyz(c.Value(float(t))) for t in ts])
         x = (pts - frame.origin) @ frame.xdir
-        if float(np.abs(x).max()) < 10 * lin_tol:
-            return True
-    return False
+        if float(np.abs(x).max()) < within:
+            out.append(pts)
+    return out
+
+
+def axis_intervals(reading: Revolution, within: float) -> list[tuple[float, float]]:
+    """Where the profile of ``reading`` lies on its axis: intervals of the canonical ``y``
+    (along ``frame.ydir`` from ``frame.origin``), touching ones merged, in order."""
+    f = reading.frame
+    spans = sorted(
+        (float(y.min()), float(y.max()))
+        for y in ((pts - f.origin) @ f.ydir for pts in _axis_edges(reading.profile, f, within))
+    )
+    merged: list[tuple[float, float]] = []
+    for y0, y1 in spans:
+        if merged and y0 <= merged[-1][1] + within:
+            merged[-1] = (merged[-1][0], max(merged[-1][1], y1))
+        else:
+            merged.append((y0, y1))
+    return merged
 
 
 def solid_diagonal(reading: Any) -> float:
@@ -602,20 +632,54 @@ def solid_diagonal(reading: Any) -> float:
 
 
 def mirrored_section(reading: Revolution) -> TopoDS_Face:
-    """The whole meridian section of a full revolution whose profile touches the axis:
-    the profile fused with its mirror image across the axis (one planar face)."""
+    """The whole meridian section of a revolution whose profile touches the axis: the
+    profile fused with its mirror image across the axis (one planar face, no edge left
+    inside it)."""
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
     from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
-    from OCP.gp import gp_Ax2, gp_Trsf
+    from OCP.gp import gp_Ax1, gp_Ax2, gp_Trsf
 
     f = reading.frame
-    with occ_guard("mirroring the profile across the axis"):
-        trsf = gp_Trsf()
-        trsf.SetMirror(gp_Ax2(gp_Pnt(*map(float, f.origin)), gp_Dir(*map(float, f.xdir))))
-        # a mirror reverses orientation: flip it back so both halves share one normal
-        mirror = BRepBuilderAPI_Transform(reading.profile, trsf, True).Shape().Reversed()
-        fuse = BRepAlgoAPI_Fuse(reading.profile, mirror)
-        if not fuse.IsDone():
-            raise NotExtrusionOrRevolutionError("the meridian section could not be completed")
-        fs = faces(fuse.Shape())
-    return _merge_faces(fs, "meridian section")
+    o = gp_Pnt(*map(float, f.origin))
+    mirror, half_turn = gp_Trsf(), gp_Trsf()
+    mirror.SetMirror(gp_Ax2(o, gp_Dir(*map(float, f.xdir))))
+    # the same image by a direct motion, flipping the plane's normal (the mirror's
+    # indirect plane can keep the halves from merging: a half disk and its image)
+    half_turn.SetRotation(gp_Ax1(o, gp_Dir(*map(float, f.ydir))), math.pi)
+    err: MedialCadError | None = None
+    for trsf in (mirror, half_turn):
+        with occ_guard("mirroring the profile across the axis"):
+            # both images are reversed so that the halves share one normal
+            image = BRepBuilderAPI_Transform(reading.profile, trsf, True).Shape().Reversed()
+            fuse = BRepAlgoAPI_Fuse(reading.profile, image)
+            if not fuse.IsDone():
+                raise NotExtrusionOrRevolutionError("the meridian section could not be completed")
+            fs = faces(fuse.Shape())
+        try:
+            face = _merge_faces(fs, "meridian section")
+        except MedialCadError as e:
+            err = err or e
+            continue
+        if not _has_inner_edge(face):
+            return face
+        err = err or NotExtrusionOrRevolutionError(
+            "the meridian section keeps the axis as an edge inside it"
+        )
+    assert err is not None
+    raise err
+
+
+def _has_inner_edge(face: TopoDS_Face) -> bool:
+    """An edge used twice by the face's wires (a slit)."""
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopTools import TopTools_IndexedMapOfShape
+
+    seen = TopTools_IndexedMapOfShape()
+    ex = TopExp_Explorer(face, TopAbs_EDGE)
+    n = 0
+    while ex.More():
+        seen.Add(ex.Current())
+        n += 1
+        ex.Next()
+    return n != seen.Extent()
