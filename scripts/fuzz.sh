@@ -4,7 +4,8 @@
 #   bash scripts/fuzz.sh [EXAMPLES_2D] [EXAMPLES_3D]
 # EXAMPLES_2D per 2D strategy (5 strategies and a fifth as many spline loops, default 500:
 # 2,600 faces), EXAMPLES_3D per 3D
-# strategy (5 extrusion and 4 revolution strategies, default 20: 180 solids).
+# strategy (5 extrusion and 5 revolution strategies, pie slices among them, default 20:
+# 200 solids).
 # Unlike CI, a failing example does not stop its strategy: every example is logged as
 # passed, refused (a clear medialcad InputError) or failed to out/fuzz/<stamp>.jsonl, failing
 # shapes are kept as exact BREP under out/fuzz/<stamp>/ for replay, and the table at the

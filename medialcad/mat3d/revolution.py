@@ -14,7 +14,14 @@ Per segment of the 2D MAT (``sigma = sin(Theta/2)``, ``Theta`` the angle):
   ``phi = Theta/2``, which bounds the planar mid sheet;
 - full revolutions: the revolved sheets only (in four quarter turns), no caps; a profile
   on the axis is first mirrored across it and the MAT of the whole meridian section is
-  revolved (its parts on the axis stay curves).
+  revolved (its parts on the axis stay curves);
+- pie slices (a profile on the axis, ``Theta <= pi``): the mirrored section's MAT, cut
+  also where it crosses the axis; its parts on the mirror's side and on the axis are no
+  sheets (the axis is an edge of the solid), the caps stand on the profile's own feet,
+  and the mid sheet reaches the axis, closed there by the profile's edges on it (rims).
+  The distance is ``min(d(q), x sin(phi), x sin(Theta - phi))`` as for any partial
+  revolution, ``d`` to the section's boundary (a mirrored edge is never nearer). At
+  ``Theta = pi`` the caps are one plane: no mid sheet (its balls touch it at one point).
 
 Every patch interpolates an exact grid of points; patches that meet share the grid
 samples of their common side, hence one edge.
