@@ -1142,6 +1142,22 @@ def test_spherical_wedge(angle_deg: float) -> None:
     assert np.abs(rad - dist).max() <= m.tol
 
 
+@pytest.mark.parametrize(
+    "name",
+    ["pie_slice_osculating_feet.bbrep", "pie_slice_half_turn_spline.bbrep"],
+)
+def test_pie_slice_where_the_feet_sweep_fast(name: str) -> None:
+    """Two fresh random pie slices (B-spline profiles touching the axis; kept exactly),
+    29 and 180 degrees. Along the axis the disks nearly osculate the profile: the feet
+    sweep 1e-3 while ``w`` moves 8e-6, and the segment's rows stopped refining at a step
+    of 1e-5 in ``w`` with the feet 0.02 tol off their interpolant, which the caps (their
+    points depend on the feet through ``asin(d/x)``) turned into a ripple of +-2.9 tol
+    between rows (completeness 1.8 tol, soundness 1.6 tol). Rows are now refined down to
+    1e-7 in ``w``, and the caps' own interpolation across rows is checked."""
+    _, num = mat_and_numbers(F.read_exact(name), name, n_complete=60)
+    assert_oracles(num)
+
+
 def test_pie_slice_wider_than_180_degrees_is_refused() -> None:
     """Beyond 180 degrees the axis of a pie slice is a reflex edge (its balls touch it):
     refused with a message that names the problem."""

@@ -129,6 +129,18 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     def g_pie(c: FloatArray, r: FloatArray) -> FloatArray:
         return np.asarray(g_level(c, r) * g_axis(c, r))
 
+    def cap_spec(s: Segment) -> _CapSpec | None:
+        """The caps :func:`revolution_parts` builds on ``s`` below (``None``: none)."""
+        c = cn.xy(s.centre)
+        if reading.touches_axis and _mirror_side(c, tol):
+            return None
+        x = np.maximum(c[:, 0], 0.0) if reading.touches_axis else c[:, 0]
+        high = mid and float(np.median(s.radius - x * sigma)) > 0
+        feet = tuple(
+            k for k, f in enumerate((s.foot_a, s.foot_b)) if not pie or _profile_side(cn.xy(f), tol)
+        )
+        return _CapSpec(sigma, high, feet, reading.touches_axis)
+
     level = g_level if mid and mat2d.rmax > 0 else (g_axis if reading.touches_axis else None)
     if pie:
         level = g_pie
@@ -136,7 +148,7 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     if pie:
         segments = [_axis_ends(s, cn, tol) for s in segments]
     if not full:
-        segments = [_angular_rows(s, cn, theta, tol) for s in segments]
+        segments = [_angular_rows(s, cn, theta, tol, cap_spec(s)) for s in segments]
     # one angular sampling for all patches, so that shared sides get identical samples
     xs = [np.abs(cn.xy(s.centre)[:, 0]).max() for s in segments] + [1e-300]
     xf = [np.abs(cn.xy(np.vstack([s.foot_a, s.foot_b]))[:, 0]).max() for s in segments] + [1e-300]
@@ -296,36 +308,50 @@ def _axis_ends(s: Segment, cn: _Canon, tol: float) -> Segment:
     return replace(s, start=ends[0], end=ends[1])
 
 
-def _angular_rows(s: Segment, cn: _Canon, theta: float, tol: float) -> Segment:
+def _angular_rows(
+    s: Segment, cn: _Canon, theta: float, tol: float, caps: _CapSpec | None = None
+) -> Segment:
     """The segment with rows added (from its own interpolant, within 0.1 tol of exact)
-    where the revolved sheet's points, cubic across rows, leave the surface of revolution
-    by more than 0.05 tol.
+    where the revolved sheet's points, or the start cap's (``caps``), cubic across rows,
+    leave their exact surfaces by more than 0.05 tol.
 
     A row of a partial revolution's sheet spans the angles ``asin(r/x)`` to ``theta -
     asin(r/x)``, which change fast next to a level end (the span is 0 there): across 4
     rows of a straight branch from a level end to a convex corner, the interpolated
     points cut inside their circles by 1.0 tol (a 28-degree revolution at a critical
-    angle). The caps share the rows, so their rims stay sewn to the sheet."""
+    angle). A cap's points change fast where the disks nearly osculate the profile (the
+    feet sweep along it while the centre hardly moves): between two rows 8e-6 apart in
+    ``w`` a pie slice's cap read 2.5 tol off. The caps and the sheet share the rows, so
+    their sides stay sewn (the end caps mirror the start caps across ``Theta/2``)."""
     if s.single or len(s.w) < 2:
         return s
     v = np.array([0.0, 0.25, 0.5, 0.75, 1.0])
+    inner = replace(s, start=End("inner"), end=End("inner"))  # rows between the ends
 
-    def points(c: FloatArray, r: FloatArray) -> FloatArray:
-        xy = cn.xy(c)
+    def points(rows: FloatArray, seg: Segment) -> FloatArray:
+        xy, r = cn.xy(rows[:, :2]), rows[:, 2]
         phi0 = np.arcsin(np.clip(r / np.maximum(xy[:, 0], 1e-300), 0.0, 1.0))
         phi = phi0[:, None] + v[None, :] * np.maximum(theta - 2 * phi0, 0.0)[:, None]
-        return cn.model(np.broadcast_to(xy[:, None, :], (len(c), len(v), 2)), phi)
+        out = [cn.model(np.broadcast_to(xy[:, None, :], (len(r), len(v), 2)), phi)]
+        if caps is not None:
+            c = xy.copy()
+            c[:, 0] = np.maximum(c[:, 0], 0.0) if caps.clamp else c[:, 0]
+            for k in caps.feet:
+                f = cn.xy(rows[:, 3 + 2 * k : 5 + 2 * k])
+                q, ph, _ = _cap_grid(seg, c, f, r, theta, caps.sigma, caps.high, v)
+                out.append(cn.model(q, ph))
+        return np.concatenate(out, axis=1)
 
     w, rows = s.w, np.column_stack([s.centre, s.radius, s.foot_a, s.foot_b])
-    for _ in range(10):
+    for _ in range(12):
         k = min(3, len(w) - 1)
         wm = 0.5 * (w[1:] + w[:-1])
         mid = make_interp_spline(w, rows, k=k)(wm)
-        fit = make_interp_spline(w, points(rows[:, :2], rows[:, 2]), k=k, axis=0)(wm)
-        exact = points(mid[:, :2], mid[:, 2])
+        fit = make_interp_spline(w, points(rows, s), k=k, axis=0)(wm)
+        exact = points(mid, inner)
         bad = np.linalg.norm(fit - exact, axis=2).max(axis=1) > 0.05 * tol
-        bad &= np.diff(w) > 1e-6
-        if not np.any(bad) or len(w) > 400:
+        bad &= np.diff(w) > 1e-8
+        if not np.any(bad) or len(w) > 800:
             break
         idx = np.nonzero(bad)[0]
         w = np.insert(w, idx + 1, wm[idx])
@@ -335,6 +361,18 @@ def _angular_rows(s: Segment, cn: _Canon, theta: float, tol: float) -> Segment:
     return replace(
         s, w=w, centre=rows[:, :2], radius=rows[:, 2], foot_a=rows[:, 3:5], foot_b=rows[:, 5:7]
     )
+
+
+@dataclass(frozen=True)
+class _CapSpec:
+    """How a segment's caps are built: ``sin(Theta/2)``, whether they stop on the level
+    curve (``high``), which feet (0: ``a``, 1: ``b``) have caps, and whether the centres
+    are clamped to ``x >= 0`` (a profile on the axis)."""
+
+    sigma: float
+    high: bool
+    feet: tuple[int, ...]
+    clamp: bool
 
 
 def _revolved_sheet(

@@ -634,7 +634,15 @@ def _refine(
         dw = np.diff(w)
         beside = np.minimum(np.r_[np.inf, dw[:-1]], np.r_[dw[1:], np.inf])
         bad |= dw > 3.0 * beside
-        bad &= dw > 1e-5
+        # rows closer than 1e-5 in w are split only where the feet still sweep (more
+        # than 10 tol per row: the disks nearly osculate the boundary and the centre
+        # hardly moves); next to a curvature-centre end, that far down, the feet are
+        # noise and would step back
+        sweep = np.maximum(
+            np.linalg.norm(np.diff(foot_a, axis=0), axis=1),
+            np.linalg.norm(np.diff(foot_b, axis=0), axis=1),
+        )
+        bad &= (dw > 1e-5) | ((dw > 1e-7) & (sweep > 10.0 * tol))
         if not np.any(bad):
             break
         idx = np.nonzero(bad)[0]
