@@ -1142,6 +1142,17 @@ def test_spherical_wedge(angle_deg: float) -> None:
     assert np.abs(rad - dist).max() <= m.tol
 
 
+def test_half_turn_pie_slice_with_a_level_end_next_to_a_branch_point() -> None:
+    """A fresh random 180-degree slice of a hexagon (kept exactly) whose level curve ``d =
+    x`` crosses a corner's branch: at the crossing ``asin(r/x)`` of the solved row read
+    ``pi/2 - 1.4e-6`` (``asin`` is steep next to 1), so the revolved sheet kept a sliver
+    between its seams and the caps' rows missed the offset row's end (a zero-length free
+    edge, chi 0 for 1). Level ends now take ``Theta/2`` exactly."""
+    name = "pie_slice_half_turn_level_at_a_branch.bbrep"
+    _, num = mat_and_numbers(F.read_exact(name), name, n_complete=60)
+    assert_oracles(num)
+
+
 @pytest.mark.parametrize(
     "name",
     ["pie_slice_osculating_feet.bbrep", "pie_slice_half_turn_spline.bbrep"],

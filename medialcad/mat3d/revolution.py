@@ -388,6 +388,7 @@ def _revolved_sheet(
 ) -> None:
     x = np.maximum(c[:, 0], 1e-300)
     phi0 = np.arcsin(np.clip(r / x, 0.0, 1.0))
+    _level_rows_at_half_angle(phi0, s, theta)
     span = np.maximum(theta - 2 * phi0, 0.0)
     v = np.linspace(0.0, 1.0, nv)
     phi = phi0[:, None] + v[None, :] * span[:, None]
@@ -481,7 +482,19 @@ def _cap_grid(
     phi = np.arcsin(np.clip(d / x, 0.0, 1.0))
     if ends and high:
         phi[:, -1] = theta / 2.0
+    elif ends:
+        _level_rows_at_half_angle(phi[:, -1], s, theta)
     return q, phi, d
+
+
+def _level_rows_at_half_angle(phi: FloatArray, s: Segment, theta: float) -> None:
+    """Set ``phi`` (one value a row) to ``Theta/2`` at the segment's level ends, where
+    ``r = x sin(Theta/2)`` holds exactly: ``asin(r/x)`` of the solved rows is off by
+    ``~sqrt(eps)`` there at 180 degrees (``asin`` is steep next to 1), which left a
+    sliver of a revolved sheet between its seams and an offset row that did not meet."""
+    for i, end in ((0, s.start), (-1, s.end)):
+        if end.kind == "level":
+            phi[i] = theta / 2.0
 
 
 def _cap_nv(cn: _Canon, jobs: list[tuple], base: int, tol: float) -> int:
