@@ -1009,8 +1009,9 @@ def soundness(
     always). Special values:
 
     - ``nan``: a *rim* sample: ``|p - q| < rim_tol`` (default ``1e-6 diag``) and within
-      ``rim_tol`` of a convex edge or a vertex of the solid, where a MAT point may have radius
-      0 and the ray direction is undefined. Count them with ``np.isnan``.
+      ``rim_tol`` of a convex edge or a vertex of the solid, or where the boundary bends
+      with a radius below ``rim_tol``, where a MAT point may have radius (nearly) 0 and
+      the ray direction is undefined. Count them with ``np.isnan``.
     - a boundary sample (``|p - q| < rim_tol``) anywhere else: its distance to the nearest
       convex edge or vertex (radius 0 is impossible there).
     - ``inf``: the sample is outside the solid (a failure).
@@ -1036,6 +1037,11 @@ def soundness(
         d, q, face, uv = sb.nearest_support(p)
         if d < tol:
             dr = sb.rim_distance(p)
+            if dr > tol and face is not None and uv is not None:
+                # a tip of the boundary bent tighter than tol (the skeletal edge of a
+                # B-spline's turn of radius 1e-7 diag) holds MAT points of radius < tol
+                if sb.curvature_bound(int(face), uv) <= tol:
+                    dr = 0.0
             errs[k] = np.nan if dr <= tol else dr
             continue
         if not sb.side(p, q, face, uv):

@@ -15,13 +15,16 @@ Per segment of the 2D MAT (``sigma = sin(Theta/2)``, ``Theta`` the angle):
 - full revolutions: the revolved sheets only (in four quarter turns), no caps; a profile
   on the axis is first mirrored across it and the MAT of the whole meridian section is
   revolved (its parts on the axis stay curves);
-- pie slices (a profile on the axis, ``Theta <= pi``): the mirrored section's MAT, cut
-  also where it crosses the axis; its parts on the mirror's side and on the axis are no
-  sheets (the axis is an edge of the solid), the caps stand on the profile's own feet,
-  and the mid sheet reaches the axis, closed there by the profile's edges on it (rims).
-  The distance is ``min(d(q), x sin(phi), x sin(Theta - phi))`` as for any partial
-  revolution, ``d`` to the section's boundary (a mirrored edge is never nearer). At
-  ``Theta = pi`` the caps are one plane: no mid sheet (its balls touch it at one point).
+- pie slices (a profile on the axis, ``Theta < 2 pi``; ``docs/pie_slices.md``): the
+  mirrored section's MAT, cut also where it crosses the axis; its parts on the mirror's
+  side and on the axis are no sheets (the axis is an edge of the solid), the caps stand
+  on the profile's own feet, and the mid sheet reaches the axis, closed there by the
+  profile's edges on it (rims). The distance is ``min(d(q), x sin(phi), x sin(Theta -
+  phi))`` as for any partial revolution, ``d`` to the section's boundary (a mirrored edge
+  is never nearer). At ``Theta = pi`` the caps are one plane: no mid sheet (its balls
+  touch it at one point). Beyond ``pi`` the axis is a reflex edge: the cut is at ``r =
+  x``, the caps end at 90 degrees on the level curve ``d(q) = x``, and that curve revolves
+  on to ``Theta`` - 90 degrees (the balls touching the profile and the axis).
 
 Every patch interpolates an exact grid of points; patches that meet share the grid
 samples of their common side, hence one edge.
@@ -37,7 +40,6 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import make_interp_spline
 
-from medialcad.errors import UnsupportedSolidError
 from medialcad.mat2d.graph import NodeKind
 from medialcad.mat3d.segments import End, Segment, split_branches
 from medialcad.recognition import Revolution
@@ -101,11 +103,6 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     """Sheets, seams, skeletal edges, rims, junctions and the compound of a revolution."""
     full = reading.full
     pie = reading.touches_axis and not full
-    if pie and reading.angle > math.pi + 1e-9:
-        raise UnsupportedSolidError(
-            f"a pie slice of {math.degrees(reading.angle):.4g} degrees (a profile touching its"
-            " axis revolved by more than 180 degrees: the axis is a reflex edge) is not supported"
-        )
     if reading.touches_axis:
         from medialcad.api import medial_axis_2d
         from medialcad.occ.recognize import mirrored_section
@@ -114,7 +111,10 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     cn = _Canon(reading, mat2d.frame)
     # a half turn read 1e-13 past 180 degrees is a half turn (its caps are one plane)
     theta = math.pi if abs(reading.angle - math.pi) <= 1e-9 else reading.angle
-    sigma = math.sin(theta / 2.0)
+    # a pie slice wider than a half turn: its axis is a reflex edge, the caps stop on the
+    # level curve d(q) = x at 90 degrees and that curve revolves on to Theta - 90 degrees
+    wide = pie and theta > math.pi
+    sigma = 1.0 if wide else math.sin(theta / 2.0)
     mid = not full and theta <= math.pi
     graph, boundary = mat2d.graph, mat2d.boundary
 
@@ -130,16 +130,7 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         return np.asarray(g_level(c, r) * g_axis(c, r))
 
     def cap_spec(s: Segment) -> _CapSpec | None:
-        """The caps :func:`revolution_parts` builds on ``s`` below (``None``: none)."""
-        c = cn.xy(s.centre)
-        if reading.touches_axis and _mirror_side(c, tol):
-            return None
-        x = np.maximum(c[:, 0], 0.0) if reading.touches_axis else c[:, 0]
-        high = mid and float(np.median(s.radius - x * sigma)) > 0
-        feet = tuple(
-            k for k, f in enumerate((s.foot_a, s.foot_b)) if not pie or _profile_side(cn.xy(f), tol)
-        )
-        return _CapSpec(sigma, high, feet, reading.touches_axis)
+        return _cap_spec(s, cn, sigma, mid or wide, pie, reading.touches_axis, tol)
 
     level = g_level if mid and mat2d.rmax > 0 else (g_axis if reading.touches_axis else None)
     if pie:
@@ -160,15 +151,13 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     if not full:
         jobs = []
         for seg in segments:
-            c = cn.xy(seg.centre)
-            if reading.touches_axis and _mirror_side(c, tol):
+            spec = cap_spec(seg)
+            if spec is None:
                 continue
-            c[:, 0] = np.maximum(c[:, 0], 0.0)
-            high = mid and float(np.median(seg.radius - c[:, 0] * sigma)) > 0
-            for foot in (seg.foot_a, seg.foot_b)[: 1 if seg.single else 2]:
-                if pie and not _profile_side(cn.xy(foot), tol):
-                    continue
-                jobs.append((seg, c, cn.xy(foot), seg.radius, theta, sigma, high))
+            c = spec.centres(cn.xy(seg.centre))
+            for k in spec.feet:
+                foot = cn.xy((seg.foot_a, seg.foot_b)[k])
+                jobs.append((seg, c, foot, seg.radius, theta, sigma, spec.high))
         nv_cap = _cap_nv(cn, jobs, nv_cap, 0.05 * tol)
     grids: list[GridPatch] = []
     offsets: list[tuple] = []
@@ -192,14 +181,16 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
             if not s.single:
                 _full_sheets(grids, cn, si, s, c, r, nv_rev)
             continue
-        high = mid and float(np.median(r - c[:, 0] * sigma)) > 0
-        if not high and not s.single:
-            _revolved_sheet(grids, junctions, cn, si, s, c, r, theta, nv_rev)
-        sides = (("a", fa), ("b", fb))[: 1 if s.single else 2]
-        if pie:
-            sides = tuple((side, f) for side, f in sides if _profile_side(f, tol))
-        for side, f in sides:
-            _cap_sheets(grids, offsets, cn, si, side, s, c, f, r, theta, sigma, high, nv_cap)
+        spec = cap_spec(s)
+        assert spec is not None  # segments on the mirror's side were skipped above
+        if not spec.high and not s.single:
+            _revolved_sheet(grids, junctions, cn, si, s, c, r, theta, nv_rev, wide)
+        for k in spec.feet:
+            side, f = (("a", fa), ("b", fb))[k]
+            _cap_sheets(grids, offsets, cn, si, side, s, c, f, r, theta, sigma, spec.high, nv_cap)
+            if wide and spec.high:
+                q, _, d = _cap_grid(s, c, f, r, theta, 1.0, True, np.array([0.0, 1.0]))
+                _level_sheet(grids, cn, (si, side), s.w, (q[:, -1], d[:, -1]), theta, nv_rev)
     used = {n for b in graph.branches for n in (b.start, b.end) if n is not None}
     for nd in graph.nodes:
         if nd.index in used or nd.kind is not NodeKind.CURVATURE_CENTRE:
@@ -215,7 +206,7 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
             continue
         if full:
             lo, hi = 0.0, 2 * math.pi
-        elif not mid or rr < cc[0] * sigma:
+        elif not (mid or wide) or rr < cc[0] * sigma:
             phi0 = math.asin(min(rr / cc[0], 1.0))
             lo, hi = phi0, theta - phi0
         else:
@@ -237,7 +228,7 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     if mid and offsets and not flat:
         a_mid = math.cos(theta / 2) * cn.A + math.sin(theta / 2) * cn.B
         mid_plane = (cn.O, a_mid, cn.D)
-    if pie and offsets and not flat:
+    if pie and mid and offsets and not flat:
         # the mid sheet of a pie slice reaches the axis along the profile's edges there
         from medialcad.occ.recognize import axis_intervals
 
@@ -251,7 +242,7 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         axis_lines,
         diag=diag,
         mid_plane=mid_plane,
-        seam_roles=_flat_roles if flat else _roles,
+        seam_roles=_flat_roles if flat or wide else _roles,
         mid_slope=sigma,
         mid_rims=mid_rims,
     )
@@ -264,9 +255,10 @@ def _roles(key: tuple) -> str | None:
 
 
 def _flat_roles(key: tuple) -> str | None:
-    """A 180-degree pie slice's start and end caps meet smoothly on the level curve (the
-    ``OFF`` rows): no seam there."""
-    return None if key[0] == "OFF" else _roles(key)
+    """A pie slice's caps of 180 degrees or more meet smoothly on the level curve (the
+    ``OFF`` rows at 180, ``OFS``/``OFE`` rows beyond: each cap meets the level curve's
+    revolved sheet there): no seam."""
+    return None if key[0] in ("OFF", "OFS", "OFE") else _roles(key)
 
 
 def _end_role(s: Segment, which: int) -> str | None:
@@ -334,8 +326,7 @@ def _angular_rows(
         phi = phi0[:, None] + v[None, :] * np.maximum(theta - 2 * phi0, 0.0)[:, None]
         out = [cn.model(np.broadcast_to(xy[:, None, :], (len(r), len(v), 2)), phi)]
         if caps is not None:
-            c = xy.copy()
-            c[:, 0] = np.maximum(c[:, 0], 0.0) if caps.clamp else c[:, 0]
+            c = caps.centres(xy)
             for k in caps.feet:
                 f = cn.xy(rows[:, 3 + 2 * k : 5 + 2 * k])
                 q, ph, _ = _cap_grid(seg, c, f, r, theta, caps.sigma, caps.high, v)
@@ -374,6 +365,40 @@ class _CapSpec:
     feet: tuple[int, ...]
     clamp: bool
 
+    def centres(self, c: FloatArray) -> FloatArray:
+        """The caps' centres: ``c`` (canonical ``(x, y)``), clamped if need be."""
+        out = np.array(c, dtype=float)
+        if self.clamp:
+            out[:, 0] = np.maximum(out[:, 0], 0.0)
+        return out
+
+
+def _cap_spec(
+    s: Segment,
+    cn: _Canon,
+    sigma: float,
+    mid: bool,
+    pie: bool,
+    touches_axis: bool,
+    tol: float,
+) -> _CapSpec | None:
+    """The caps of a partial revolution's segment ``s`` (``None``: none, a segment on
+    the mirrored section's side). A cap stops on the level curve ``r = x sin(Theta/2)``
+    when the segment lies beyond it (``high``, only with a mid sheet: ``Theta <= 180``);
+    a one-sided segment has the cap of its foot ``a`` only, and a pie slice's caps stand
+    only on feet on the profile's own side."""
+    c = cn.xy(s.centre)
+    if touches_axis and _mirror_side(c, tol):
+        return None
+    x = np.maximum(c[:, 0], 0.0) if touches_axis else c[:, 0]
+    high = mid and float(np.median(s.radius - x * sigma)) > 0
+    feet = tuple(
+        k
+        for k, f in enumerate((s.foot_a, s.foot_b)[: 1 if s.single else 2])
+        if not pie or _profile_side(cn.xy(f), tol)
+    )
+    return _CapSpec(sigma, high, feet, touches_axis)
+
 
 def _revolved_sheet(
     grids: list[GridPatch],
@@ -385,7 +410,11 @@ def _revolved_sheet(
     r: FloatArray,
     theta: float,
     nv: int,
+    wide: bool = False,
 ) -> None:
+    """A segment's revolved sheet; ``wide``: a pie slice wider than 180 degrees, where a
+    level end is an arc (from 90 degrees to ``Theta`` - 90), a seam with the level
+    curve's revolved sheets on either side, not a point."""
     x = np.maximum(c[:, 0], 1e-300)
     phi0 = np.arcsin(np.clip(r / x, 0.0, 1.0))
     _level_rows_at_half_angle(phi0, s, theta)
@@ -403,16 +432,46 @@ def _revolved_sheet(
             rad,
             ("SB", si),
             ("ST", si),
-            (_end_role(s, 0), float(r[0])),
-            (_end_role(s, 1), float(r[-1])),
+            (_end_role(s, 0) or _level_role(s, 0, wide), float(r[0])),
+            (_end_role(s, 1) or _level_role(s, 1, wide), float(r[-1])),
         )
     )
     for i, end in ((0, s.start), (-1, s.end)):
-        if end.kind == "node" and end.node_kind is NodeKind.BRANCH_POINT:
+        if (end.kind == "node" and end.node_kind is NodeKind.BRANCH_POINT) or (
+            wide and end.kind == "level"
+        ):
             junctions.append((pts[i, 0], float(r[i])))
             junctions.append((pts[i, -1], float(r[i])))
         elif end.kind == "level":
             junctions.append((pts[i, 0], float(r[i])))
+
+
+def _level_role(s: Segment, which: int, wide: bool) -> str | None:
+    end = s.start if which == 0 else s.end
+    return "seam" if wide and end.kind == "level" else None
+
+
+def _level_sheet(
+    grids: list[GridPatch],
+    cn: _Canon,
+    key: tuple,
+    w: FloatArray,
+    level: tuple,
+    theta: float,
+    nv: int,
+) -> None:
+    """The level curve ``d(q) = x`` (``level``: its points ``q`` and distances ``d``, one a
+    row ``w``) where a high segment's cap ends, revolved from 90 degrees to ``Theta`` - 90
+    (a pie slice wider than 180 degrees): the balls there touch the profile and the axis,
+    the solid's reflex edge; radius ``x``. ``key``: the cap's ``(segment, side)``."""
+    q, d = level
+    v = np.linspace(0.0, 1.0, nv)
+    phi = 0.5 * math.pi + v * (theta - math.pi)
+    n = len(q)
+    pts = cn.model(np.broadcast_to(q[:, None, :], (n, nv, 2)), np.broadcast_to(phi, (n, nv)))
+    rad = np.broadcast_to(d[:, None], (n, nv)).copy()
+    bottom, top = ("OFS", *key), ("OFE", *key)
+    grids.append(GridPatch("revolved", w, v, pts, rad, bottom, top, (None, 0.0), (None, 0.0)))
 
 
 def _full_sheets(
@@ -477,11 +536,15 @@ def _cap_grid(
     ends = v[-1] == 1.0  # the last column is the seam or the level curve: exact values
     if ends and not high:
         q[:, -1, :] = c
+    elif ends:
+        for i in (0, -1):
+            if vstar[i] == 1.0:  # a level end: the ruling reaches the centre
+                q[i, -1, :] = c[i]
     d = vv * r[:, None]
     x = np.maximum(q[..., 0], 1e-300)
     phi = np.arcsin(np.clip(d / x, 0.0, 1.0))
     if ends and high:
-        phi[:, -1] = theta / 2.0
+        phi[:, -1] = min(theta, math.pi) / 2.0
     elif ends:
         _level_rows_at_half_angle(phi[:, -1], s, theta)
     return q, phi, d
@@ -494,7 +557,7 @@ def _level_rows_at_half_angle(phi: FloatArray, s: Segment, theta: float) -> None
     sliver of a revolved sheet between its seams and an offset row that did not meet."""
     for i, end in ((0, s.start), (-1, s.end)):
         if end.kind == "level":
-            phi[i] = theta / 2.0
+            phi[i] = min(theta, math.pi) / 2.0
 
 
 def _cap_nv(cn: _Canon, jobs: list[tuple], base: int, tol: float) -> int:
@@ -534,14 +597,17 @@ def _cap_sheets(
 ) -> None:
     v = np.linspace(0.0, 1.0, nv)
     q, phi, d = _cap_grid(s, c, f, r, theta, sigma, high, v)
+    wide = theta > math.pi  # (high caps of a pie slice): each meets its own level sheet
+    start_top = ("OFS" if wide else "OFF", si, side)
+    end_top = ("OFE" if wide else "OFF", si, side)
     for cap, ph, rim_key, top_key in (
-        ("start", phi, ("F0", si, side), ("SB", si) if not high else ("OFF", si, side)),
-        ("end", theta - phi, ("FL", si, side), ("ST", si) if not high else ("OFF", si, side)),
+        ("start", phi, ("F0", si, side), ("SB", si) if not high else start_top),
+        ("end", theta - phi, ("FL", si, side), ("ST", si) if not high else end_top),
     ):
         pts = cn.model(q, ph)
         grids.append(GridPatch("cap", s.w, v, pts, d, rim_key, top_key, (None, 0.0), (None, 0.0)))
         del cap
-    if high:
+    if high and not wide:
         offsets.append(("OFF", si, side))
 
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -226,12 +227,15 @@ def _project_params(
     cs = np.asarray(cs, dtype=float)
     lo, hi = sorted((e.piece.t0, e.piece.t1))
     keep = _keeper(e, lo, hi)
-    grid = np.linspace(lo, hi, 65)
-    pg = e.piece.curve.point(grid)
-    ref = cs if near is None else np.asarray(near, dtype=float)
-    t = grid[np.argmin(np.linalg.norm(ref[:, None, :] - pg[None, :, :], axis=2), axis=1)]
-    if near is not None:  # refine the start on a finer grid around it
-        dt = (hi - lo) / 64.0
+    if near is None:
+        grid = np.linspace(lo, hi, 65)
+        pg = e.piece.curve.point(grid)
+        t = grid[np.argmin(np.linalg.norm(cs[:, None, :] - pg[None, :, :], axis=2), axis=1)]
+    else:  # the curve point nearest to ``near``, on a dense grid, then a finer one
+        ref = np.asarray(near, dtype=float)
+        grid, tree = _dense_samples(e, lo, hi)
+        t = grid[tree.query(ref)[1]]
+        dt = (hi - lo) / (len(grid) - 1)
         fine = keep(t[:, None] + np.linspace(-dt, dt, 33)[None, :])
         pf = e.piece.curve.point(fine.ravel()).reshape(len(t), 33, 2)
         t = fine[np.arange(len(t)), np.argmin(np.linalg.norm(pf - ref[:, None, :], axis=2), axis=1)]
@@ -244,6 +248,28 @@ def _project_params(
         if np.all(np.abs(step) < 1e-15 * np.maximum(1.0, np.abs(t))):
             break
     return np.asarray(t)
+
+
+_DENSE: dict[int, tuple[object, FloatArray, object]] = {}
+
+
+def _dense_samples(e: Element, lo: float, hi: float) -> tuple[FloatArray, Any]:
+    """Parameters of 4,097 points along an element's curve and a KD-tree of the points
+    (cached per curve piece). A start for Newton taken from 65 points missed a thin
+    spike of a B-spline: the sides 0.02 apart, a foot near one side started on the other
+    and stayed there (a local nearest point), and that side's rim crossed over."""
+    from scipy.spatial import cKDTree
+
+    piece = e.piece
+    assert piece is not None
+    got = _DENSE.get(id(piece))
+    if got is None or got[0] is not piece:
+        if len(_DENSE) > 512:
+            _DENSE.clear()
+        grid = np.linspace(lo, hi, 4097)
+        got = (piece, grid, cKDTree(piece.curve.point(grid)))
+        _DENSE[id(piece)] = got
+    return got[1], got[2]
 
 
 def foot_normals(boundary: Boundary, element: int, feet: FloatArray) -> FloatArray | None:
@@ -606,7 +632,11 @@ def _refine(
             ta = _project_params(boundary, el_a, ex[:, :2], near_a)
             tb = _project_params(boundary, el_b, ex[:, :2], near_b)
             (ex_a, _, ka), (ex_b, _, kb) = boundary.frame_at(ea, ta), boundary.frame_at(eb, tb)
-            ill = np.nonzero((ex[:, 2] * ka > 0.5) | (ex[:, 2] * kb > 0.5))[0]
+            # a foot projected outside its rows' feet leapt to another nearest point of
+            # its curve (both feet of a branch into a tight turn of one B-spline: the
+            # centre from the branch spline, a little off, is nearer to the other side)
+            astray = _astray(boundary, el_a, ta, foot_a) | _astray(boundary, el_b, tb, foot_b)
+            ill = np.nonzero((ex[:, 2] * ka > 0.5) | (ex[:, 2] * kb > 0.5) | astray)[0]
             if len(ill):
                 got = _from_foot(boundary, el_a, el_b, foot_a, foot_b, ill)
                 for j, (c, r, fa, fb) in zip(ill.tolist(), got, strict=True):
@@ -616,6 +646,7 @@ def _refine(
                     step = float(np.linalg.norm(centre[j + 1] - centre[j]))
                     if not np.isfinite(r) or max(d0, d1) > 2.0 * step + tol:
                         continue  # not between its rows: keep the projected sample
+                    astray[j] = False
                     f = d0 / (d0 + d1) if d0 + d1 > 0 else 0.5
                     wm[j] = w[j] + min(max(f, 0.05), 0.95) * (w[j + 1] - w[j])
                     ex[j, :2], ex[j, 2], ex_a[j], ex_b[j] = c, r, fa, fb
@@ -643,6 +674,8 @@ def _refine(
             np.linalg.norm(np.diff(foot_b, axis=0), axis=1),
         )
         bad &= (dw > 1e-5) | ((dw > 1e-7) & (sweep > 10.0 * tol))
+        if pieces:
+            bad &= ~astray  # no exact row there: better none than one on the wrong side
         if not np.any(bad):
             break
         idx = np.nonzero(bad)[0]
@@ -652,6 +685,22 @@ def _refine(
         foot_a = np.insert(foot_a, idx + 1, ex_a[idx], axis=0)
         foot_b = np.insert(foot_b, idx + 1, ex_b[idx], axis=0)
     return w, centre, radius, foot_a, foot_b
+
+
+def _astray(boundary: Boundary, element: int, t: FloatArray, feet: FloatArray) -> NDArray[np.bool_]:
+    """Whether each parameter ``t[j]`` on ``element`` lies outside the parameters of the
+    feet of rows ``j`` and ``j + 1`` (``feet``, on that element), widened by a quarter of
+    their span on either side (modulo the period of a closed curve)."""
+    own = _project_params(boundary, element, feet, feet)
+    lo, span = own[:-1], np.diff(own)
+    period = _closed_period(boundary.elements[element])
+    if period is not None:  # the short way round
+        span = (span + 0.5 * period) % period - 0.5 * period
+    mid = lo + 0.5 * span
+    off = t - mid
+    if period is not None:
+        off = (off + 0.5 * period) % period - 0.5 * period
+    return np.asarray(np.abs(off) > 0.75 * np.abs(span) + 1e-12 * np.maximum(1.0, np.abs(mid)))
 
 
 def _pocket(

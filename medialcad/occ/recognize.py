@@ -639,13 +639,13 @@ def mirrored_section(reading: Revolution) -> TopoDS_Face:
     from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
     from OCP.gp import gp_Ax1, gp_Ax2, gp_Trsf
 
-    f = reading.frame
-    o = gp_Pnt(*map(float, f.origin))
+    origin, xdir, ydir = _mirror_axis(reading)
+    o = gp_Pnt(*map(float, origin))
     mirror, half_turn = gp_Trsf(), gp_Trsf()
-    mirror.SetMirror(gp_Ax2(o, gp_Dir(*map(float, f.xdir))))
+    mirror.SetMirror(gp_Ax2(o, gp_Dir(*map(float, xdir))))
     # the same image by a direct motion, flipping the plane's normal (the mirror's
     # indirect plane can keep the halves from merging: a half disk and its image)
-    half_turn.SetRotation(gp_Ax1(o, gp_Dir(*map(float, f.ydir))), math.pi)
+    half_turn.SetRotation(gp_Ax1(o, gp_Dir(*map(float, ydir))), math.pi)
     err: MedialCadError | None = None
     for trsf in (mirror, half_turn):
         with occ_guard("mirroring the profile across the axis"):
@@ -667,6 +667,32 @@ def mirrored_section(reading: Revolution) -> TopoDS_Face:
         )
     assert err is not None
     raise err
+
+
+def _mirror_axis(reading: Revolution) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Origin, in-plane normal and direction of the line to mirror the profile across:
+    the line through the ends of the profile's edges on the axis where there are such
+    edges (within 1e-7 of the size of the axis read from the solid), else that axis.
+
+    A profile meeting its axis tangentially (a B-spline ending along it) and the
+    mirror image of it across an axis 1e-10 off its end vertex cross each other next to
+    that vertex: the section read as self-intersecting. Mirrored across the line through
+    its own vertices, the end vertices are their own images."""
+    f = reading.frame
+    within = 1e-7 * reading.diag
+    edges_on_axis = _axis_edges(reading.profile, f, within)
+    if not edges_on_axis:
+        return f.origin, f.xdir, f.ydir
+    pts = np.vstack([e[[0, -1]] for e in edges_on_axis])
+    y = (pts - f.origin) @ f.ydir
+    a, b = pts[int(np.argmin(y))], pts[int(np.argmax(y))]
+    if float(np.linalg.norm(b - a)) <= 1e-3 * reading.diag:
+        return f.origin, f.xdir, f.ydir
+    ydir = _unit(b - a)
+    if float(ydir @ f.ydir) < 0:
+        ydir = -ydir
+    xdir = _unit(f.xdir - (f.xdir @ ydir) * ydir)
+    return a, xdir, ydir
 
 
 def _has_inner_edge(face: TopoDS_Face) -> bool:
