@@ -614,7 +614,18 @@ class SolidBoundary:
             v = x - foot
             if n is not None and abs(float(v @ n)) > 0.9 * float(np.linalg.norm(v)):
                 return float(v @ n) > 0
-        return bool(self.inside([x])[0])
+        if self.inside([x])[0]:
+            return True
+        # OCCT's classifier can answer OUT for a point well inside a B-spline solid (its
+        # ray grazes a face; 7 samples of a 240-degree pie slice, 0.088 from the boundary).
+        # The ball of radius dist(p, dS) meets no boundary: all its points share p's
+        # state, so ask at points halfway to its surface and take the majority.
+        d = float(np.linalg.norm(x - np.asarray(foot, dtype=float)))
+        if d <= 1e-6 * self.diag:
+            return False
+        dirs = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, -1, -1], [1, -1, 1]], dtype=float)
+        dirs /= np.linalg.norm(dirs, axis=1)[:, None]
+        return int(self.inside(x + 0.5 * d * dirs).sum()) >= 3
 
     def curvature_bound(self, face: int, uv: ArrayLike) -> float:
         """``1/k`` for the largest principal curvature ``k`` of face ``face`` at ``uv`` bending
@@ -1037,11 +1048,15 @@ def soundness(
         d, q, face, uv = sb.nearest_support(p)
         if d < tol:
             dr = sb.rim_distance(p)
-            if dr > tol and face is not None and uv is not None:
-                # a tip of the boundary bent tighter than tol (the skeletal edge of a
-                # B-spline's turn of radius 1e-7 diag) holds MAT points of radius < tol
-                if sb.curvature_bound(int(face), uv) <= tol:
-                    dr = 0.0
+            # a tip of the boundary bent tighter than tol (the skeletal edge of a
+            # B-spline's turn of radius 1e-7 diag) holds MAT points of radius < tol
+            if (
+                dr > tol
+                and face is not None
+                and uv is not None
+                and sb.curvature_bound(int(face), uv) <= tol
+            ):
+                dr = 0.0
             errs[k] = np.nan if dr <= tol else dr
             continue
         if not sb.side(p, q, face, uv):

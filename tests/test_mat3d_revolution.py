@@ -1248,6 +1248,22 @@ def test_pie_slices_of_splines_with_a_thin_spike(name: str) -> None:
     assert_oracles(num)
 
 
+@pytest.mark.parametrize(
+    "name", ["wide_pie_slice_fan_by_a_reflex_notch.bbrep", "wide_pie_slice_level_sheets.bbrep"]
+)
+def test_wide_pie_slices_of_random_splines(name: str) -> None:
+    """Two fresh random pie slices wider than 180 degrees (232 and 240; kept exactly).
+    The first has a curvature maximum of its spline next to the axis whose disk passes
+    through the profile's vertex there: the curvature centre's fan of feet began where
+    the centre projects onto the nearly circular stretch, not at the branch's own end
+    foot, and its tiny caps and level sheets fell apart from the rest (2 components, 6
+    free edges); the fan now runs between the branch's end feet. The second's level
+    sheets are inside the solid (OCCT's classifier read 7 of their samples as outside:
+    the oracle now asks again inside the sample's empty ball)."""
+    _, num = mat_and_numbers(F.read_exact(name), name, n_complete=60)
+    assert_oracles(num)
+
+
 def test_quarter_cylinder_read_as_a_revolution_is_its_extrusion_mat() -> None:
     """A quarter cylinder is computed as an extrusion; read as a pie slice it gives the
     same medial axis: samples of either output lie within tol of the other."""

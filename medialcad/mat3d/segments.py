@@ -13,6 +13,7 @@ Pure numpy/scipy: no OCC.
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -434,8 +435,11 @@ def _split(
         nd = graph.nodes[node]
         fan: list[Segment] = []
         if float(np.linalg.norm(fa[where] - fb[where])) > 1e-3 * graph.tol:
-            pa = _project(boundary, int(ea[where]), nd.point_2d)[1]
-            pb = _project(boundary, int(eb[where]), nd.point_2d)[1]
+            # the fan runs between this branch's own end feet (the centre's projection
+            # onto a nearly circular stretch may land anywhere on it: a fan from there
+            # left a gap to the branch's caps, and their sheets fell apart)
+            pa = _project(boundary, int(ea[where]), fa[where])[1]
+            pb = _project(boundary, int(eb[where]), fb[where])[1]
             fan = _fan(graph, boundary, node, ((int(ea[where]), pa), (int(eb[where]), pb)))
         if fan:
             fans.extend(fan)
@@ -620,6 +624,9 @@ def _refine(
     cap = max(4 * len(w), 200)  # near a curvature-centre end the feet move like a square
     # root of the branch length: interpolation converges slowly there, stop refining
     pieces = boundary.elements[el_a].piece is not None and boundary.elements[el_b].piece is not None
+    if pieces:  # the rows' feet's own parameters (kept through the insertions below)
+        pa = _project_params(boundary, el_a, foot_a, foot_a)
+        pb = _project_params(boundary, el_b, foot_b, foot_b)
     for _ in range(16):
         if len(w) < 2 or len(w) >= cap:
             break
@@ -635,7 +642,7 @@ def _refine(
             # a foot projected outside its rows' feet leapt to another nearest point of
             # its curve (both feet of a branch into a tight turn of one B-spline: the
             # centre from the branch spline, a little off, is nearer to the other side)
-            astray = _astray(boundary, el_a, ta, foot_a) | _astray(boundary, el_b, tb, foot_b)
+            astray = _astray(boundary, el_a, ta, pa) | _astray(boundary, el_b, tb, pb)
             ill = np.nonzero((ex[:, 2] * ka > 0.5) | (ex[:, 2] * kb > 0.5) | astray)[0]
             if len(ill):
                 got = _from_foot(boundary, el_a, el_b, foot_a, foot_b, ill)
@@ -684,14 +691,17 @@ def _refine(
         radius = np.insert(radius, idx + 1, ex[idx, 2])
         foot_a = np.insert(foot_a, idx + 1, ex_a[idx], axis=0)
         foot_b = np.insert(foot_b, idx + 1, ex_b[idx], axis=0)
+        if pieces:  # solved rows have their feet off the projections: their own params
+            na = _project_params(boundary, el_a, ex_a[idx], ex_a[idx])
+            nb = _project_params(boundary, el_b, ex_b[idx], ex_b[idx])
+            pa, pb = np.insert(pa, idx + 1, na), np.insert(pb, idx + 1, nb)
     return w, centre, radius, foot_a, foot_b
 
 
-def _astray(boundary: Boundary, element: int, t: FloatArray, feet: FloatArray) -> NDArray[np.bool_]:
-    """Whether each parameter ``t[j]`` on ``element`` lies outside the parameters of the
-    feet of rows ``j`` and ``j + 1`` (``feet``, on that element), widened by a quarter of
-    their span on either side (modulo the period of a closed curve)."""
-    own = _project_params(boundary, element, feet, feet)
+def _astray(boundary: Boundary, element: int, t: FloatArray, own: FloatArray) -> NDArray[np.bool_]:
+    """Whether each parameter ``t[j]`` on ``element`` lies outside the parameters ``own``
+    of the feet of rows ``j`` and ``j + 1``, widened by a quarter of their span on either
+    side (modulo the period of a closed curve)."""
     lo, span = own[:-1], np.diff(own)
     period = _closed_period(boundary.elements[element])
     if period is not None:  # the short way round
@@ -793,8 +803,6 @@ def _solve_from(
     rows: IntArray,
 ) -> list[tuple[FloatArray, float, FloatArray, FloatArray]]:
     """:func:`_from_foot` from side a's foot (``(centre, r, foot a, foot b)`` a row)."""
-    from scipy.optimize import minimize_scalar
-
     ea, eb = boundary.elements[el_a], boundary.elements[el_b]
     assert ea.piece is not None and eb.piece is not None
     ta = _project_params(boundary, el_a, np.vstack([foot_a[rows], foot_a[rows + 1]]))
@@ -807,26 +815,48 @@ def _solve_from(
     b, n, _ = boundary.frame_at(ea, 0.5 * (ta0 + ta1))
     lo_b, hi_b = sorted((eb.piece.t0, eb.piece.t1))
     period_b = _closed_period(eb)
-    out = []
-    for i in range(m):
-        x0, x1 = sorted((float(tb0[i]), float(tb1[i])))
-        if period_b is not None and x1 - x0 > 0.5 * period_b:
-            x0, x1 = x1, x0 + period_b
-        pad = 0.5 * (x1 - x0) + 1e-12 * max(1.0, abs(x0))
-        lo, hi = x0 - pad, x1 + pad
-        if period_b is None:
-            lo, hi = max(lo, lo_b), min(hi, hi_b)
+    x0, x1 = np.minimum(tb0, tb1), np.maximum(tb0, tb1)
+    if period_b is not None:  # across the seam: the short way round
+        wrap = x1 - x0 > 0.5 * period_b
+        x0, x1 = np.where(wrap, x1, x0), np.where(wrap, x0 + period_b, x1)
+    pad = 0.5 * (x1 - x0) + 1e-12 * np.maximum(1.0, np.abs(x0))
+    lo, hi = x0 - pad, x1 + pad
+    if period_b is None:
+        lo, hi = np.maximum(lo, lo_b), np.minimum(hi, hi_b)
+    curve = eb.piece.curve
 
-        def f(t: float, i: int = i) -> float:
-            q = eb.piece.curve.point(np.array([t]))[0] - b[i]  # type: ignore[union-attr]
-            bb = float(q @ n[i])
-            return float(q @ q) / (2.0 * bb) if bb > 0 else np.inf
+    def f(t: FloatArray) -> FloatArray:
+        q = curve.point(t) - b
+        bb = np.einsum("ij,ij->i", q, n)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(bb > 0, np.einsum("ij,ij->i", q, q) / (2.0 * bb), np.inf)
 
-        res = minimize_scalar(f, bounds=(lo, hi), method="bounded", options={"xatol": 1e-14})
-        r = float(res.fun)
-        q = eb.piece.curve.point(np.array([float(res.x)]))[0]
-        out.append((b[i] + r * n[i], r, b[i].copy(), np.asarray(q, dtype=float)))
-    return out
+    t = _golden_minima(f, lo, hi)
+    r = f(t)
+    q = np.asarray(curve.point(t), dtype=float)
+    return [(b[i] + r[i] * n[i], float(r[i]), b[i].copy(), q[i]) for i in range(m)]
+
+
+def _golden_minima(
+    f: Callable[[FloatArray], FloatArray], lo: FloatArray, hi: FloatArray
+) -> FloatArray:
+    """Golden-section minima of ``f`` (vectorised over rows) on the intervals ``[lo, hi]``,
+    all rows at once: one evaluation of ``f`` a step instead of a scalar search a row (the
+    rows solved from their feet took 85 % of a B-spline extrusion's time)."""
+    g = 0.5 * (math.sqrt(5.0) - 1.0)
+    lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
+    c, d = hi - g * (hi - lo), lo + g * (hi - lo)
+    fc, fd = f(c), f(d)
+    for _ in range(120):
+        left = fc <= fd  # the minimum is in [lo, d]: d -> hi, c -> d
+        hi, lo = np.where(left, d, hi), np.where(left, lo, c)
+        new = np.where(left, hi - g * (hi - lo), lo + g * (hi - lo))
+        fn = f(new)
+        c, d = np.where(left, new, d), np.where(left, c, new)
+        fc, fd = np.where(left, fn, fd), np.where(left, fc, fn)
+        if np.all(hi - lo <= 1e-15 * np.maximum(1.0, np.abs(lo))):
+            break
+    return np.asarray(np.where(fc <= fd, c, d))
 
 
 def _side_before(cuts: list[float], um: float, ulo: float, uhi: float, e0: int, e1: int) -> bool:
