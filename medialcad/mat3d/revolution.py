@@ -8,8 +8,8 @@ Per segment of the 2D MAT (``sigma = sin(Theta/2)``, ``Theta`` the angle):
 
 - low (``r < x sigma`` or ``Theta > pi``): the revolved sheet ``X(c, phi)``,
   ``asin(r/x) <= phi <= Theta - asin(r/x)``; on each side a start cap sheet
-  ``X(q, asin(d(q)/x))`` over the ruling ``q = f + v (c - f)`` (``d = v r``) and the
-  mirrored end cap sheet;
+  ``X(q, asin(d(q)/x))`` over the ruling ``q = f + t (c - f)`` (``d = t r``; sampled
+  at equal steps of the angle) and the mirrored end cap sheet;
 - high (small angles): the caps stop on the level curve ``d(q) = x sigma`` at
   ``phi = Theta/2``, which bounds the planar mid sheet;
 - full revolutions: the revolved sheets only (in four quarter turns), no caps; a profile
