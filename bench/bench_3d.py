@@ -39,6 +39,8 @@ OBJECTS = [
     ("bearing_housing", "Fig. 23 (revolution)"),
     ("stepped_shaft", "full revolution on the axis"),
     ("small_angle_revolution", "10 degrees"),
+    ("pin_pie_slice", "120-degree pie slice (profile on the axis)"),
+    ("pin_wide_slice", "270-degree pie slice (the axis a reflex edge)"),
 ]
 
 
