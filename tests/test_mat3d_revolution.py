@@ -251,6 +251,21 @@ class CompoundDistance:
 # --------------------------------------------------------------------------- closed form
 
 
+def _distances_to(
+    q: FloatArray, edges: list[tuple[FloatArray, FloatArray]]
+) -> tuple[FloatArray, FloatArray]:
+    """Distances ``(N, S)`` from plane points to each straight edge and the feet
+    ``(N, S, 2)``."""
+    dist, feet = [], []
+    for a, b in edges:
+        ab = b - a
+        t = np.clip(((q - a) @ ab) / float(ab @ ab), 0.0, 1.0)
+        f = a + t[:, None] * ab
+        feet.append(f)
+        dist.append(np.linalg.norm(q - f, axis=1))
+    return np.stack(dist, axis=1), np.stack(feet, axis=1)
+
+
 @dataclass(frozen=True)
 class PolygonRevolution:
     """A polygonal profile (local ``x`` = distance from the axis, ``y`` along it) revolved
@@ -260,11 +275,14 @@ class PolygonRevolution:
     angle: float = TWO_PI
 
     @property
-    def segments(self) -> list[tuple[FloatArray, FloatArray]]:
+    def edges(self) -> list[tuple[FloatArray, FloatArray]]:
         v = np.asarray(self.vertices, dtype=float)
-        pairs = [(v[i], v[(i + 1) % len(v)]) for i in range(len(v))]
+        return [(v[i], v[(i + 1) % len(v)]) for i in range(len(v))]
+
+    @property
+    def segments(self) -> list[tuple[FloatArray, FloatArray]]:
         # an edge on the axis is not boundary of the solid (full revolutions only)
-        return [(a, b) for a, b in pairs if not (abs(a[0]) < 1e-12 and abs(b[0]) < 1e-12)]
+        return [(a, b) for a, b in self.edges if not (abs(a[0]) < 1e-12 and abs(b[0]) < 1e-12)]
 
     def contains(self, q: FloatArray) -> NDArray[np.bool_]:
         """Even-odd test of profile points ``q (N, 2)`` (boundary points: either way)."""
@@ -279,28 +297,14 @@ class PolygonRevolution:
     def profile_distance(self, q: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Distances ``(N, S)`` from profile points to each boundary segment and the feet
         ``(N, S, 2)``."""
-        dist, feet = [], []
-        for a, b in self.segments:
-            ab = b - a
-            t = np.clip(((q - a) @ ab) / float(ab @ ab), 0.0, 1.0)
-            f = a + t[:, None] * ab
-            feet.append(f)
-            dist.append(np.linalg.norm(q - f, axis=1))
-        return np.stack(dist, axis=1), np.stack(feet, axis=1)
+        return _distances_to(q, self.segments)
 
     def polygon_distance(self, p: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Distance from plane points ``p (N, 2)`` to the polygon's whole boundary (its
         edges on the axis too) and the nearest boundary points."""
-        v = np.asarray(self.vertices, dtype=float)
-        best, foot = np.full(len(p), np.inf), np.zeros_like(p)
-        for a, b in zip(v, np.roll(v, -1, axis=0), strict=True):
-            ab = b - a
-            t = np.clip(((p - a) @ ab) / float(ab @ ab), 0.0, 1.0)
-            f = a + t[:, None] * ab
-            d = np.linalg.norm(p - f, axis=1)
-            better = d < best
-            best, foot = np.where(better, d, best), np.where(better[:, None], f, foot)
-        return best, foot
+        dist, feet = _distances_to(p, self.edges)
+        k = np.argmin(dist, axis=1)
+        return dist[np.arange(len(p)), k], feet[np.arange(len(p)), k]
 
     def terms(
         self, rho: FloatArray, y: FloatArray, phi: FloatArray

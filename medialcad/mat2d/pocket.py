@@ -307,11 +307,29 @@ def _tangent_partners(
     k = np.argmin(fg, axis=1)
     a = grid[np.maximum(k - 1, 0)]
     b = grid[np.minimum(k + 1, _GRID)]
+    y, r = golden_minima(f, a, b, _GOLDEN_STEPS)
+    off = y if near == lo else width - y  # from the maximum
+    ok = np.isfinite(r) & (off > 1e-7 * width)
+    return np.where(ok, lo + y, np.nan), np.where(ok, r, np.nan)
+
+
+def golden_minima(
+    f: Callable[[FloatArray], FloatArray],
+    a: FloatArray,
+    b: FloatArray,
+    steps: int,
+    rtol: float = 0.0,
+) -> tuple[FloatArray, FloatArray]:
+    """Golden-section minima of ``f`` on the brackets ``[a, b]`` of ``m`` rows, all rows
+    searched together: ``f`` maps ``(m, k)`` abscissae to ``(m, k)`` values, one call a
+    step. At most ``steps`` steps, fewer once every bracket is within ``rtol`` (relative,
+    at least absolute). Returns the abscissae and the least values."""
     g = 0.5 * (np.sqrt(5.0) - 1.0)
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     c, d = b - g * (b - a), a + g * (b - a)
     fcd = f(np.column_stack([c, d]))
     fc, fd = fcd[:, 0], fcd[:, 1]
-    for _ in range(_GOLDEN_STEPS):
+    for _ in range(steps):
         left = fc <= fd  # the least is in [a, d]
         b = np.where(left, d, b)
         a = np.where(left, a, c)
@@ -320,8 +338,6 @@ def _tangent_partners(
         fn = f(np.where(left, c_new, d_new)[:, None])[:, 0]
         fc, fd = np.where(left, fn, fd), np.where(left, fc, fn)
         c, d = c_new, d_new
-    y = np.where(fc <= fd, c, d)
-    r = np.minimum(fc, fd)
-    off = y if near == lo else width - y  # from the maximum
-    ok = np.isfinite(r) & (off > 1e-7 * width)
-    return np.where(ok, lo + y, np.nan), np.where(ok, r, np.nan)
+        if rtol and np.all(b - a <= rtol * np.maximum(1.0, np.abs(a))):
+            break
+    return np.where(fc <= fd, c, d), np.minimum(fc, fd)

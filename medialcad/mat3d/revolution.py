@@ -187,10 +187,11 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
             _revolved_sheet(grids, junctions, cn, si, s, c, r, theta, nv_rev, wide)
         for k in spec.feet:
             side, f = (("a", fa), ("b", fb))[k]
-            _cap_sheets(grids, offsets, cn, si, side, s, c, f, r, theta, sigma, spec.high, nv_cap)
+            top = _cap_sheets(
+                grids, offsets, cn, si, side, s, c, f, r, theta, sigma, spec.high, nv_cap
+            )
             if wide and spec.high:
-                q, _, d = _cap_grid(s, c, f, r, theta, 1.0, True, np.array([0.0, 1.0]))
-                _level_sheet(grids, cn, (si, side), s.w, (q[:, -1], d[:, -1]), theta, nv_rev)
+                _level_sheet(grids, cn, (si, side), s.w, top, theta, nv_rev)
     used = {n for b in graph.branches for n in (b.start, b.end) if n is not None}
     for nd in graph.nodes:
         if nd.index in used or nd.kind is not NodeKind.CURVATURE_CENTRE:
@@ -261,8 +262,12 @@ def _flat_roles(key: tuple) -> str | None:
     return None if key[0] in ("OFF", "OFS", "OFE") else _roles(key)
 
 
-def _end_role(s: Segment, which: int) -> str | None:
+def _end_role(s: Segment, which: int, wide: bool = False) -> str | None:
+    """The role of a revolved sheet's end side: by its node, and at a level end of a pie
+    slice wider than 180 degrees (``wide``) the seam arc shared with two level sheets."""
     end = s.start if which == 0 else s.end
+    if end.kind == "level" and wide:
+        return "seam"
     if end.kind != "node":
         return None
     return (
@@ -432,8 +437,8 @@ def _revolved_sheet(
             rad,
             ("SB", si),
             ("ST", si),
-            (_end_role(s, 0) or _level_role(s, 0, wide), float(r[0])),
-            (_end_role(s, 1) or _level_role(s, 1, wide), float(r[-1])),
+            (_end_role(s, 0, wide), float(r[0])),
+            (_end_role(s, 1, wide), float(r[-1])),
         )
     )
     for i, end in ((0, s.start), (-1, s.end)):
@@ -444,11 +449,6 @@ def _revolved_sheet(
             junctions.append((pts[i, -1], float(r[i])))
         elif end.kind == "level":
             junctions.append((pts[i, 0], float(r[i])))
-
-
-def _level_role(s: Segment, which: int, wide: bool) -> str | None:
-    end = s.start if which == 0 else s.end
-    return "seam" if wide and end.kind == "level" else None
 
 
 def _level_sheet(
@@ -543,7 +543,6 @@ def _cap_grid(
     ends = v[-1] == 1.0  # the last column is the seam or the level curve: exact values
     if ends:
         t[:, -1] = tstar
-    t[:, 0] = 0.0 if v[0] == 0.0 else t[:, 0]
     q = f[:, None, :] + t[..., None] * (c - f)[:, None, :]
     if ends:
         last = tstar == 1.0  # the ruling reaches the centre (a low row, a level end)
@@ -596,7 +595,9 @@ def _cap_sheets(
     sigma: float,
     high: bool,
     nv: int,
-) -> None:
+) -> tuple[FloatArray, FloatArray]:
+    """The start and end caps on foot ``f``; returns their top row's profile points and
+    distances (of a high cap: the level curve where it ends)."""
     v = np.linspace(0.0, 1.0, nv)
     q, phi, d = _cap_grid(s, c, f, r, theta, sigma, high, v)
     wide = theta > math.pi  # (high caps of a pie slice): each meets its own level sheet
@@ -611,6 +612,7 @@ def _cap_sheets(
         del cap
     if high and not wide:
         offsets.append(("OFF", si, side))
+    return q[:, -1], d[:, -1]
 
 
 def interp_grid(

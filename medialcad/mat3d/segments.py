@@ -13,7 +13,6 @@ Pure numpy/scipy: no OCC.
 from __future__ import annotations
 
 import itertools
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -24,7 +23,7 @@ from scipy.optimize import brentq
 
 from medialcad.mat2d.boundary import Boundary, Element
 from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
-from medialcad.mat2d.pocket import POCKET_LENGTH, pocket_rows
+from medialcad.mat2d.pocket import POCKET_LENGTH, golden_minima, pocket_rows
 from medialcad.mat2d.pocket import closed_period as _closed_period
 
 __all__ = ["End", "Segment", "foot_normals", "split_branches"]
@@ -234,7 +233,7 @@ def _project_params(
         t = grid[np.argmin(np.linalg.norm(cs[:, None, :] - pg[None, :, :], axis=2), axis=1)]
     else:  # the curve point nearest to ``near``, on a dense grid, then a finer one
         ref = np.asarray(near, dtype=float)
-        grid, tree = _dense_samples(e, lo, hi)
+        grid, tree = _dense_samples(e)
         t = grid[tree.query(ref)[1]]
         dt = (hi - lo) / (len(grid) - 1)
         fine = keep(t[:, None] + np.linspace(-dt, dt, 33)[None, :])
@@ -254,7 +253,7 @@ def _project_params(
 _DENSE: dict[int, tuple[object, FloatArray, object]] = {}
 
 
-def _dense_samples(e: Element, lo: float, hi: float) -> tuple[FloatArray, Any]:
+def _dense_samples(e: Element) -> tuple[FloatArray, Any]:
     """Parameters of 4,097 points along an element's curve and a KD-tree of the points
     (cached per curve piece). A start for Newton taken from 65 points missed a thin
     spike of a B-spline: the sides 0.02 apart, a foot near one side started on the other
@@ -267,6 +266,7 @@ def _dense_samples(e: Element, lo: float, hi: float) -> tuple[FloatArray, Any]:
     if got is None or got[0] is not piece:
         if len(_DENSE) > 512:
             _DENSE.clear()
+        lo, hi = sorted((piece.t0, piece.t1))
         grid = np.linspace(lo, hi, 4097)
         got = (piece, grid, cKDTree(piece.curve.point(grid)))
         _DENSE[id(piece)] = got
@@ -644,6 +644,7 @@ def _refine(
             # centre from the branch spline, a little off, is nearer to the other side)
             astray = _astray(boundary, el_a, ta, pa) | _astray(boundary, el_b, tb, pb)
             ill = np.nonzero((ex[:, 2] * ka > 0.5) | (ex[:, 2] * kb > 0.5) | astray)[0]
+            solved = []
             if len(ill):
                 got = _from_foot(boundary, el_a, el_b, foot_a, foot_b, ill)
                 for j, (c, r, fa, fb) in zip(ill.tolist(), got, strict=True):
@@ -657,6 +658,11 @@ def _refine(
                     f = d0 / (d0 + d1) if d0 + d1 > 0 else 0.5
                     wm[j] = w[j] + min(max(f, 0.05), 0.95) * (w[j + 1] - w[j])
                     ex[j, :2], ex[j, 2], ex_a[j], ex_b[j] = c, r, fa, fb
+                    solved.append(j)
+            if solved:  # feet solved, not projected: their own parameters
+                sj = np.array(solved)
+                ta[sj] = _project_params(boundary, el_a, ex_a[sj], ex_a[sj])
+                tb[sj] = _project_params(boundary, el_b, ex_b[sj], ex_b[sj])
         else:
             ex_a = _project_many(boundary, el_a, ex[:, :2], near_a)
             ex_b = _project_many(boundary, el_b, ex[:, :2], near_b)
@@ -691,10 +697,8 @@ def _refine(
         radius = np.insert(radius, idx + 1, ex[idx, 2])
         foot_a = np.insert(foot_a, idx + 1, ex_a[idx], axis=0)
         foot_b = np.insert(foot_b, idx + 1, ex_b[idx], axis=0)
-        if pieces:  # solved rows have their feet off the projections: their own params
-            na = _project_params(boundary, el_a, ex_a[idx], ex_a[idx])
-            nb = _project_params(boundary, el_b, ex_b[idx], ex_b[idx])
-            pa, pb = np.insert(pa, idx + 1, na), np.insert(pb, idx + 1, nb)
+        if pieces:
+            pa, pb = np.insert(pa, idx + 1, ta[idx]), np.insert(pb, idx + 1, tb[idx])
     return w, centre, radius, foot_a, foot_b
 
 
@@ -825,38 +829,16 @@ def _solve_from(
         lo, hi = np.maximum(lo, lo_b), np.minimum(hi, hi_b)
     curve = eb.piece.curve
 
-    def f(t: FloatArray) -> FloatArray:
-        q = curve.point(t) - b
-        bb = np.einsum("ij,ij->i", q, n)
+    def f(t: FloatArray) -> FloatArray:  # t (m, k)
+        q = curve.point(t.ravel()).reshape(*t.shape, 2) - b[:, None, :]
+        bb = np.einsum("mkj,mj->mk", q, n)
         with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(bb > 0, np.einsum("ij,ij->i", q, q) / (2.0 * bb), np.inf)
+            return np.where(bb > 0, np.einsum("mkj,mkj->mk", q, q) / (2.0 * bb), np.inf)
 
-    t = _golden_minima(f, lo, hi)
-    r = f(t)
+    # all rows together (a scalar search a row took 85 % of a B-spline extrusion's time)
+    t, r = golden_minima(f, lo, hi, 120, rtol=1e-15)
     q = np.asarray(curve.point(t), dtype=float)
     return [(b[i] + r[i] * n[i], float(r[i]), b[i].copy(), q[i]) for i in range(m)]
-
-
-def _golden_minima(
-    f: Callable[[FloatArray], FloatArray], lo: FloatArray, hi: FloatArray
-) -> FloatArray:
-    """Golden-section minima of ``f`` (vectorised over rows) on the intervals ``[lo, hi]``,
-    all rows at once: one evaluation of ``f`` a step instead of a scalar search a row (the
-    rows solved from their feet took 85 % of a B-spline extrusion's time)."""
-    g = 0.5 * (math.sqrt(5.0) - 1.0)
-    lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
-    c, d = hi - g * (hi - lo), lo + g * (hi - lo)
-    fc, fd = f(c), f(d)
-    for _ in range(120):
-        left = fc <= fd  # the minimum is in [lo, d]: d -> hi, c -> d
-        hi, lo = np.where(left, d, hi), np.where(left, lo, c)
-        new = np.where(left, hi - g * (hi - lo), lo + g * (hi - lo))
-        fn = f(new)
-        c, d = np.where(left, new, d), np.where(left, c, new)
-        fc, fd = np.where(left, fn, fd), np.where(left, fc, fn)
-        if np.all(hi - lo <= 1e-15 * np.maximum(1.0, np.abs(lo))):
-            break
-    return np.asarray(np.where(fc <= fd, c, d))
 
 
 def _side_before(cuts: list[float], um: float, ulo: float, uhi: float, e0: int, e1: int) -> bool:
