@@ -114,8 +114,13 @@ def _keeper(e: Element, lo: float, hi: float) -> Callable[[FloatArray], FloatArr
     return lambda t: np.clip(t, lo, hi)
 
 
-def _joint(boundary: Boundary, e_from: int, e_to: int) -> tuple[FloatArray, FloatArray]:
-    """Point and inward normal where the boundary passes between two adjacent elements."""
+def _joint(
+    boundary: Boundary, e_from: int, e_to: int, near: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Point and inward normal where the boundary passes between two adjacent elements;
+    ``near``: a point next to the joint (the feet either side of it). A loop of two
+    elements (a circle written as two arcs) joins them at both ends: the one beside the
+    feet is meant (the other put the rows' feet across the circle)."""
     a, b = boundary.elements[e_from], boundary.elements[e_to]
     edge = a if a.piece is not None else b
     vert = b if edge is a else a
@@ -125,13 +130,18 @@ def _joint(boundary: Boundary, e_from: int, e_to: int) -> tuple[FloatArray, Floa
         assert a.piece is not None and b.piece is not None
         pts = a.piece.curve.point(np.array([a.piece.t0, a.piece.t1]))
         q = b.piece.curve.point(np.array([b.piece.t0, b.piece.t1]))
-        dist = np.linalg.norm(pts[:, None, :] - q[None, :, :], axis=2)
-        i = int(np.unravel_index(np.argmin(dist), dist.shape)[0])
-        p = pts[i]
+        dist = np.linalg.norm(pts[:, None, :] - q[None, :, :], axis=2).min(axis=1)
+        shared = dist <= dist.min() + 1e-9 * boundary.diag
+        score = np.where(shared, np.linalg.norm(pts - near, axis=1), np.inf)
+        p = pts[int(np.argmin(score))]
     assert edge.piece is not None
     ends = np.array([edge.piece.t0, edge.piece.t1])
     pe = edge.piece.curve.point(ends)
-    t_end = ends[int(np.argmin(np.linalg.norm(pe - p, axis=1)))]
+    gap = np.linalg.norm(pe - p, axis=1)
+    # (an edge closed on a vertex meets it at both ends: the end whose inside is nearer)
+    inner = edge.piece.curve.point(ends + np.array([1e-3, -1e-3]) * (ends[1] - ends[0]))
+    shared = gap <= gap.min() + 1e-9 * boundary.diag
+    t_end = ends[int(np.argmin(np.where(shared, np.linalg.norm(inner - near, axis=1), np.inf)))]
     _, n, _ = boundary.frame_at(edge, np.array([t_end]))
     return p, n[0]
 
@@ -162,7 +172,59 @@ def split_branches(
     for nd in graph.nodes:
         if nd.index not in used and nd.kind is NodeKind.CURVATURE_CENTRE:
             out.extend(_fan(graph, boundary, nd.index, None))
-    return [_dedupe(s) for s in out]
+    return [_unswing(_dedupe(s), graph.tol) for s in out]
+
+
+def _unswing(s: Segment, tol: float) -> Segment:
+    """Drop the interior rows the interpolating cubic through the rows swings at.
+
+    Every row is exact, but next to a curvature-centre end of a noisy profile (an
+    approximated circle: its centre's cluster of tiny branches) rows 6e-9 apart in ``w``
+    can differ by 6e-5 in centre: a kink in the parametrisation, not in the branch, and
+    the cubic through them swung 1,000 units off between its neighbours (a revolved sheet
+    reaching 12 diag out of the solid). A step whose interpolated midpoint lies farther
+    from its chord's midpoint than both a quarter of ``tol`` and the chord itself (a
+    smooth branch bends ``h^2 k / 8``, far less) is a swing; of the rows beside it, the
+    one closest in ``w`` to a neighbour goes, until no step swings."""
+    from scipy.interpolate import make_interp_spline
+
+    w, vals = s.w, np.column_stack([s.centre, s.radius, s.foot_a, s.foot_b])
+    groups = (slice(0, 3), slice(3, 5), slice(5, 7))
+    keep = np.arange(len(w))
+    for _ in range(len(w)):
+        if len(keep) < 5:
+            break
+        ww, vv = w[keep], vals[keep]
+        mid = make_interp_spline(ww, vv, k=3)(0.5 * (ww[1:] + ww[:-1]))
+        chord_mid = 0.5 * (vv[1:] + vv[:-1])
+        dev = np.max([np.linalg.norm(mid[:, g] - chord_mid[:, g], axis=1) for g in groups], 0)
+        step = np.max([np.linalg.norm(np.diff(vv[:, g], axis=0), axis=1) for g in groups], 0)
+        bad = np.nonzero((dev > 0.25 * tol) & (dev > step))[0]
+        if len(bad) == 0:
+            break
+        j = int(bad[np.argmax(dev[bad])])
+        dw = np.diff(ww)
+        near = np.minimum(np.r_[np.inf, dw], np.r_[dw, np.inf])  # each row's closest gap
+        lo, hi = max(j - 2, 1), min(j + 3, len(ww) - 2)  # rows beside the step, not ends
+        if hi < lo:
+            break
+        drop = lo + int(np.argmin(near[lo : hi + 1]))
+        keep = np.delete(keep, drop)
+    if len(keep) == len(w):
+        return s
+    return Segment(
+        s.branch,
+        w[keep],
+        s.centre[keep],
+        s.radius[keep],
+        s.foot_a[keep],
+        s.foot_b[keep],
+        s.element_a,
+        s.element_b,
+        s.start,
+        s.end,
+        s.single,
+    )
 
 
 def _dedupe(s: Segment, gap: float = 1e-9) -> Segment:
@@ -459,7 +521,8 @@ def _split(
         for els, side in ((ea, 0), (eb, 1)):
             if els[i] == els[i + 1]:
                 continue
-            p, nrm = _joint(boundary, int(els[i]), int(els[i + 1]))
+            feet = fa if side == 0 else fb
+            p, nrm = _joint(boundary, int(els[i]), int(els[i + 1]), 0.5 * (feet[i] + feet[i + 1]))
 
             def g(uu: float, p: FloatArray = p, nrm: FloatArray = nrm) -> float:
                 c = sp(np.array([uu]))[0][:2]
@@ -543,18 +606,22 @@ def _split(
             < 1e-2 * graph.tol
         ):
             continue  # the level passes through the end node itself (a threshold angle)
-        if merged and cut[0] - merged[-1][0] < 1e-9:
-            continue
         prev = merged[-1] if merged else None
-        if (
-            prev is not None
-            and cut[1] == prev[1] == "transition"
-            and not (cut[6] & prev[6])
-            and float(np.linalg.norm(cut[2] - prev[2])) < 1e-2 * graph.tol
+        # a cut at the previous one's parameter is that cut (the sides changing element
+        # there join it: both sides of a symmetric profile change at the same parameter, and
+        # the second side's transition, dropped, left its next segment on the old element)
+        if prev is not None and (
+            cut[0] - prev[0] < 1e-9
+            or (
+                cut[1] == prev[1] == "transition"
+                and not (cut[6] & prev[6])
+                and float(np.linalg.norm(cut[2] - prev[2])) < 1e-2 * graph.tol
+            )
         ):
-            ga = cut[4] if 0 in cut[6] else prev[4]
-            gb = cut[5] if 1 in cut[6] else prev[5]
-            merged[-1] = (prev[0], "transition", prev[2], prev[3], ga, gb, prev[6] | cut[6])
+            new = cut[6] - prev[6]
+            ga = cut[4] if 0 in new else prev[4]
+            gb = cut[5] if 1 in new else prev[5]
+            merged[-1] = (prev[0], prev[1], prev[2], prev[3], ga, gb, prev[6] | cut[6])
             continue
         merged.append(cut)
     # where each side changes element

@@ -30,6 +30,7 @@ from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools, BRepTools_WireExplorer
 from OCP.Geom import (
+    Geom_BSplineSurface,
     Geom_ConicalSurface,
     Geom_CylindricalSurface,
     Geom_RectangularTrimmedSurface,
@@ -89,15 +90,21 @@ def _value(curve: Any, t: float) -> FloatArray:
 
 def _revolution_surfaces(
     faces: list[TopoDS_Face], frame: Frame, tol: float
-) -> list[tuple[Any, tuple[float, ...]]]:
-    """The surfaces of ``faces`` whose first parameter is the angle about the solid's axis
-    (surfaces of revolution, cylinders, cones, spheres and tori on that axis): their
-    iso-curves are meridians."""
-    out = []
+) -> list[tuple[Any, tuple[float, ...], bool]]:
+    """The surfaces of ``faces`` whose iso-curves may be meridians: ``(surface, its face's
+    uv bounds, swept)``. Swept: surfaces of revolution, cylinders, cones, spheres and tori
+    on the solid's axis, whose first parameter is the angle about it. Not swept: B-spline
+    surfaces (a revolution written as NURBS, whose rational form keeps its iso-curves of
+    one direction exactly planar meridians; which direction, and whether at all, is
+    checked on the curve found)."""
+    out: list[tuple[Any, tuple[float, ...], bool]] = []
     for f in faces:
         s = BRep_Tool.Surface_s(f)
         if isinstance(s, Geom_RectangularTrimmedSurface):
             s = s.BasisSurface()
+        if isinstance(s, Geom_BSplineSurface):
+            out.append((s, tuple(BRepTools.UVBounds_s(f)), False))
+            continue
         if not isinstance(s, _SWEPT):
             continue
         ax = s.Axis()
@@ -108,7 +115,7 @@ def _revolution_surfaces(
             or np.linalg.norm(off - (off @ frame.ydir) * frame.ydir) > tol
         ):
             continue
-        out.append((s, tuple(BRepTools.UVBounds_s(f))))
+        out.append((s, tuple(BRepTools.UVBounds_s(f)), True))
     return out
 
 
@@ -133,8 +140,55 @@ def _angle(surface: Any, u: float, v: float, frame: Frame) -> float:
     return math.atan2(float(q @ frame.zdir), float(q @ frame.xdir))
 
 
+def _swept_iso(s: Any, u: float, v: float, frame: Frame) -> Any:
+    """The meridian of a swept surface in the section plane: its first parameter is the
+    angle (the sense of u about the frame's axis read off the surface itself: a mirrored
+    placement turns the other way)."""
+    a0 = _angle(s, u, v, frame)
+    turn = math.remainder(_angle(s, u + 1e-3, v, frame) - a0, 2 * math.pi)
+    sign = 1.0 if turn > 0 else -1.0
+    for _ in range(2):
+        u -= sign * _angle(s, u, v, frame)
+    return s.UIso(u)
+
+
+def _planar_isos(
+    s: Any, u: float, v: float, bounds: tuple[float, ...], frame: Frame, tol: float
+) -> list[tuple[Any, tuple[float, float]]]:
+    """The iso-curves of a B-spline surface through the section plane near ``(u, v)``
+    that lie in that plane (within a thousandth of ``tol``), with their parameter range:
+    the surface's meridians where it is a revolution in rational form. The iso's
+    parameter is solved (secant steps) so that its point at ``(u, v)`` lies in the plane."""
+    u0, u1, v0, v1 = bounds
+    out = []
+    size = 1.0 + float(np.linalg.norm(frame.origin))
+    for v_iso in (False, True):  # the u-iso (a curve in v), then the v-iso
+        if v_iso:
+            p, q, lo, hi, iso_of = v, u, u0, u1, s.VIso
+        else:
+            p, q, lo, hi, iso_of = u, v, v0, v1, s.UIso
+
+        def off(x: float, v_iso: bool = v_iso, q: float = q) -> float:
+            pt = s.Value(q, x) if v_iso else s.Value(x, q)
+            return float((_xyz(pt) - frame.origin) @ frame.zdir)
+
+        x0, f0 = p, off(p)
+        x1 = p + 1e-6 * (1.0 + abs(p))
+        f1 = off(x1)
+        for _ in range(30):
+            if f1 == f0 or abs(f1) <= 1e-15 * size:
+                break
+            x0, x1, f0 = x1, x1 - f1 * (x1 - x0) / (f1 - f0), f1
+            f1 = off(x1)
+        iso = iso_of(float(x1))
+        pts = np.array([_value(iso, t) for t in np.linspace(lo, hi, 17)])
+        if float(np.abs((pts - frame.origin) @ frame.zdir).max()) <= 1e-3 * tol:
+            out.append((iso, (lo, hi)))
+    return out
+
+
 def _iso_piece(
-    surfaces: list[tuple[Any, tuple[float, ...]]],
+    surfaces: list[tuple[Any, tuple[float, ...], bool]],
     old: _Piece,
     frame: Frame,
     tol: float,
@@ -142,54 +196,60 @@ def _iso_piece(
     """The exact iso-curve piece replacing ``old``, if ``old`` lies on one of ``surfaces``."""
     mid_t = 0.5 * (old.t0 + old.t1)
     mid = _value(old.curve, mid_t)
-    closed = bool(np.linalg.norm(old.start - old.end) <= tol)
-    for s, (_u0, _u1, v0, v1) in surfaces:
+    for s, bounds, swept in surfaces:
         sas = ShapeAnalysis_Surface(s)
         uv = sas.ValueOfUV(gp_Pnt(*mid), tol)
         if sas.Gap() > tol:
             continue
         u, v = uv.X(), uv.Y()
-        # the half-plane's angle exactly: turn the iso-curve into the section plane (the
-        # sense of u about the frame's axis read off the surface itself: a mirrored
-        # placement turns the other way)
-        a0 = _angle(s, u, v, frame)
-        turn = math.remainder(_angle(s, u + 1e-3, v, frame) - a0, 2 * math.pi)
-        sign = 1.0 if turn > 0 else -1.0
-        for _ in range(2):
-            u -= sign * _angle(s, u, v, frame)
-        iso = s.UIso(u)
-        tm, dm = _project(iso, mid)
-        if dm > tol:
-            continue
-        forward = (
-            float(_tangent(iso, tm) @ _tangent(old.curve, mid_t))
-            * (1.0 if old.t1 > old.t0 else -1.0)
-            > 0
-        )
-        if closed:
-            a, b = (v0, v1) if forward else (v1, v0)
+        # the half-plane's angle exactly: the iso-curve turned into the section plane
+        if swept:
+            isos = [(_swept_iso(s, u, v, frame), (bounds[2], bounds[3]))]
         else:
-            a, da = _project(iso, old.start)
-            b, db = _project(iso, old.end)
-            if max(da, db) > tol:
-                continue
-            # a section vertex lies on a circle where faces meet, the end of the face's
-            # v-range: there exactly (the Boolean's vertex is off by up to its tolerance)
-            a, b = (_snap(iso, x, (v0, v1), tol) for x in (a, b))
-            period = iso.Period() if iso.IsPeriodic() else None
-            if (b <= a) if forward else (a <= b):
-                if period is None:
-                    continue
-                if forward:
-                    b += period
-                else:
-                    a += period
-        # the replacement must run along the old edge
-        ts = np.linspace(a, b, 9)
-        if any(_project(old.curve, _value(iso, t))[1] > tol for t in ts):
-            continue
-        return _Piece(iso, a, b, _value(iso, a), _value(iso, b), True)
+            isos = _planar_isos(s, u, v, bounds, frame, tol)
+        for iso, ends in isos:
+            got = _along(iso, ends, old, mid_t, mid, tol)
+            if got is not None:
+                return got
     return None
+
+
+def _along(
+    iso: Any, ends: tuple[float, float], old: _Piece, mid_t: float, mid: FloatArray, tol: float
+) -> _Piece | None:
+    """The piece of ``iso`` (parameter range ``ends`` on its face) running along ``old``."""
+    v0, v1 = ends
+    closed = bool(np.linalg.norm(old.start - old.end) <= tol)
+    tm, dm = _project(iso, mid)
+    if dm > tol:
+        return None
+    forward = (
+        float(_tangent(iso, tm) @ _tangent(old.curve, mid_t)) * (1.0 if old.t1 > old.t0 else -1.0)
+        > 0
+    )
+    if closed:
+        a, b = (v0, v1) if forward else (v1, v0)
+    else:
+        a, da = _project(iso, old.start)
+        b, db = _project(iso, old.end)
+        if max(da, db) > tol:
+            return None
+        # a section vertex lies on a circle where faces meet, the end of the face's
+        # v-range: there exactly (the Boolean's vertex is off by up to its tolerance)
+        a, b = (_snap(iso, x, (v0, v1), tol) for x in (a, b))
+        period = iso.Period() if iso.IsPeriodic() else None
+        if (b <= a) if forward else (a <= b):
+            if period is None:
+                return None
+            if forward:
+                b += period
+            else:
+                a += period
+    # the replacement must run along the old edge
+    ts = np.linspace(a, b, 9)
+    if any(_project(old.curve, _value(iso, t))[1] > tol for t in ts):
+        return None
+    return _Piece(iso, a, b, _value(iso, a), _value(iso, b), True)
 
 
 def _snap(curve: Any, t: float, ends: tuple[float, float], tol: float) -> float:

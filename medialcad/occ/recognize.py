@@ -46,6 +46,7 @@ from OCP.GeomAbs import (
     GeomAbs_SurfaceOfRevolution,
     GeomAbs_Torus,
 )
+from OCP.GeomLib import GeomLib_IsPlanarSurface
 from OCP.gp import gp_Ax3, gp_Dir, gp_Pln, gp_Pnt, gp_Vec
 from OCP.GProp import GProp_GProps
 from OCP.ShapeAnalysis import ShapeAnalysis_ShapeTolerance
@@ -109,12 +110,20 @@ def _unit(v: FloatArray) -> FloatArray:
     return np.asarray(v / np.linalg.norm(v))
 
 
-def _face_data(index: int, face: TopoDS_Face) -> _FaceData:
+def _face_data(index: int, face: TopoDS_Face, flat_tol: float) -> _FaceData:
+    """Samples and type of one face. A free-form face flat within ``flat_tol`` (a plane
+    written as a B-spline surface, as NURBS-only exporters do) is read as a plane."""
     surf = BRepAdaptor_Surface(face, True)
     stype = surf.GetType()
     kind = _KINDS.get(stype, "free")
     axis: tuple[FloatArray, FloatArray] | None = None
-    if kind == "plane":
+    if kind == "free":
+        flat = GeomLib_IsPlanarSurface(BRep_Tool.Surface_s(face), flat_tol)
+        if flat.IsPlanar():
+            kind = "plane"
+            ax = flat.Plan().Axis()
+            axis = (_xyz(ax.Location()), _xyz(ax.Direction()))
+    elif kind == "plane":
         ax = surf.Plane().Axis()
         axis = (_xyz(ax.Location()), _xyz(ax.Direction()))
     elif kind == "cylinder":
@@ -468,7 +477,7 @@ def recognize_solid(obj: Any, tol: float | None = None) -> SolidKind:
         shape_tol = ShapeAnalysis_ShapeTolerance().Tolerance(solid, 1)
         lin_tol = float(tol) if tol is not None else max(1e-6 * diag, shape_tol)
         ang_tol = max(1e-6, 10.0 * lin_tol / diag)
-        data = [_face_data(i, f) for i, f in enumerate(faces(solid))]
+        data = [_face_data(i, f, lin_tol) for i, f in enumerate(faces(solid))]
         volume = _volume(solid, any(f.kind in ("extrusion", "revolution") for f in data))
     reasons: list[str] = []
     ext = _recognize_extrusion(solid, data, lin_tol, ang_tol, volume, reasons)
