@@ -34,7 +34,7 @@ from OCP.Geom2dConvert import Geom2dConvert, Geom2dConvert_ApproxCurve
 from OCP.GeomAbs import GeomAbs_C2
 from OCP.GeomAPI import GeomAPI
 from OCP.GeomLib import GeomLib_IsPlanarSurface
-from OCP.gp import gp_Ax3, gp_Dir, gp_Pln, gp_Pnt
+from OCP.gp import gp_Ax3, gp_Dir, gp_Pln, gp_Pnt, gp_Pnt2d, gp_Vec2d
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_REVERSED, TopAbs_VERTEX, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
@@ -228,6 +228,25 @@ def _offset_exact(base: Curve, offset: float) -> Curve:
     return CircleCurve(base.center, radius, base.xaxis, base.yaxis)
 
 
+def _smoothly_closed(bs: Geom2d_BSplineCurve, first: float, last: float) -> bool:
+    """Whether ``[first, last]`` is the whole of a closed B-spline whose ends meet (within
+    1e-7 of its size) with one tangent direction (within ``1e-6`` rad, the joints'
+    tolerance)."""
+    k0, k1 = bs.FirstParameter(), bs.LastParameter()
+    span = k1 - k0
+    if span <= 0 or abs(first - k0) > 1e-12 * span or abs(last - k1) > 1e-12 * span:
+        return False
+    p0, p1, v0, v1 = gp_Pnt2d(), gp_Pnt2d(), gp_Vec2d(), gp_Vec2d()
+    bs.D1(k0, p0, v0)
+    bs.D1(k1, p1, v1)
+    poles = [bs.Pole(i) for i in range(1, bs.NbPoles() + 1)]
+    size = max(max(abs(q.X()), abs(q.Y())) for q in poles)
+    if p0.Distance(p1) > 1e-7 * max(size, 1.0):
+        return False
+    n0, n1 = v0.Magnitude(), v1.Magnitude()
+    return n0 > 0 and n1 > 0 and v0.Angle(v1) ** 2 < 1e-12
+
+
 class _Reparam(Curve):
     """A curve whose parameter is an affine function of another's (for converted curves)."""
 
@@ -245,6 +264,10 @@ def _nurbs(bs: Geom2d_BSplineCurve, *, trimmed: bool, first: float, last: float)
     if bs.IsPeriodic():
         period = bs.Period()
         bs.SetNotPeriodic()
+    elif not trimmed and _smoothly_closed(bs, first, last):
+        # a whole closed curve written clamped (a NURBS-converted periodic spline): one
+        # period, so that feet and samples wrap across its seam as on a periodic one
+        period = last - first
     n = bs.NbPoles()
     poles = np.array([[bs.Pole(i).X(), bs.Pole(i).Y()] for i in range(1, n + 1)])
     weights = np.array([bs.Weight(i) for i in range(1, n + 1)])

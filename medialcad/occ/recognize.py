@@ -421,6 +421,10 @@ def _section(solid: TopoDS_Shape, frame: Frame, size: float) -> TopoDS_Face:
     o, x, _y = frame.origin, frame.xdir, frame.ydir
     ax = gp_Ax3(gp_Pnt(*o), gp_Dir(*frame.zdir), gp_Dir(*x))
     with occ_guard("cutting the meridian section"):
+        fast = _plane_section(solid, ax, frame, 1e-7 * size)
+    if fast is not None:
+        return fast
+    with occ_guard("cutting the meridian section"):
         half = BRepBuilderAPI_MakeFace(gp_Pln(ax), 0.0, 2 * size, -2 * size, 2 * size).Face()
         common = BRepAlgoAPI_Common(solid, half)
         if not common.IsDone():
@@ -429,6 +433,62 @@ def _section(solid: TopoDS_Shape, frame: Frame, size: float) -> TopoDS_Face:
     if not fs:
         raise NotExtrusionOrRevolutionError("the meridian section of the revolution is empty")
     return _merge_faces(fs, "meridian section")
+
+
+def _plane_section(
+    solid: TopoDS_Shape, ax: gp_Ax3, frame: Frame, within: float
+) -> TopoDS_Face | None:
+    """The meridian section built from the plane's section curves alone, when those on the
+    half-plane's side all lie clear of the axis (``within``) and close into wires: the
+    outer wire and its holes on the plane. ``None`` otherwise (a profile touching or
+    crossing the axis: the Boolean common cuts it there). OCC's common of a NURBS
+    revolution of a blob with a half-plane took 62 s; its plane section takes 0.2 s."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Section
+    from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
+    from OCP.ShapeFix import ShapeFix_Face
+    from OCP.TopTools import TopTools_HSequenceOfShape
+
+    pln = gp_Pln(ax)
+    sec = BRepAlgoAPI_Section(solid, pln, False)
+    sec.Approximation(True)
+    sec.Build()
+    if not sec.IsDone():
+        return None
+    half = TopTools_HSequenceOfShape()
+    for e in edges(sec.Shape()):
+        c = BRepAdaptor_Curve(e)
+        ts = np.linspace(c.FirstParameter(), c.LastParameter(), 9)
+        xs = np.array([(_xyz(c.Value(float(t))) - frame.origin) @ frame.xdir for t in ts])
+        if xs.min() > within:
+            half.Append(e)
+        elif xs.max() >= -within:
+            return None  # on or across the axis
+    if half.Length() == 0:
+        return None
+    wires = TopTools_HSequenceOfShape()
+    ShapeAnalysis_FreeBounds.ConnectEdgesToWires_s(half, within, False, wires)
+    loops = []
+    for i in range(1, wires.Length() + 1):
+        w = TopoDS.Wire_s(wires.Value(i))
+        mk = BRepBuilderAPI_MakeFace(pln, w, True)
+        if not BRep_Tool.IsClosed_s(w) or not mk.IsDone():
+            return None
+        loops.append((abs(_area_centroid(mk.Face())[0]), w))
+    loops.sort(key=lambda a: -a[0])
+    mk = BRepBuilderAPI_MakeFace(pln, loops[0][1], True)
+    for _, w in loops[1:]:
+        mk.Add(w)
+    if not mk.IsDone():
+        return None
+    fix = ShapeFix_Face(mk.Face())
+    fix.Perform()
+    face = TopoDS.Face_s(fix.Face())
+    want = loops[0][0] - sum(a for a, _ in loops[1:])
+    area = _area_centroid(face)[0]
+    if not BRepCheck_Analyzer(face).IsValid() or abs(area - want) > 1e-9 * loops[0][0]:
+        return None
+    return face
 
 
 def _volume(shape: TopoDS_Shape, swept_faces: bool = False) -> float:
