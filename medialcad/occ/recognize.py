@@ -61,6 +61,7 @@ from medialcad.errors import (
     MedialCadError,
     NoSolidError,
     NotExtrusionOrRevolutionError,
+    OCCError,
 )
 from medialcad.frame import Frame
 from medialcad.occ.io import occ_guard
@@ -529,16 +530,24 @@ def _single_solid(obj: Any) -> TopoDS_Shape:
 def recognize_solid(obj: Any, tol: float | None = None) -> SolidKind:
     """See :func:`medialcad.recognition.recognize`."""
     solid = _single_solid(obj)
-    with occ_guard("analysing the solid"):
-        box = Bnd_Box()
-        BRepBndLib.Add_s(solid, box, False)
-        x0, y0, z0, x1, y1, z1 = box.Get()
-        diag = math.dist((x0, y0, z0), (x1, y1, z1))
-        shape_tol = ShapeAnalysis_ShapeTolerance().Tolerance(solid, 1)
-        lin_tol = float(tol) if tol is not None else max(1e-6 * diag, shape_tol)
-        ang_tol = max(1e-6, 10.0 * lin_tol / diag)
-        data = [_face_data(i, f, lin_tol) for i, f in enumerate(faces(solid))]
-        volume = _volume(solid, any(f.kind in ("extrusion", "revolution") for f in data))
+    try:
+        with occ_guard("analysing the solid"):
+            box = Bnd_Box()
+            BRepBndLib.Add_s(solid, box, False)
+            x0, y0, z0, x1, y1, z1 = box.Get()
+            diag = math.dist((x0, y0, z0), (x1, y1, z1))
+            shape_tol = ShapeAnalysis_ShapeTolerance().Tolerance(solid, 1)
+            lin_tol = float(tol) if tol is not None else max(1e-6 * diag, shape_tol)
+            ang_tol = max(1e-6, 10.0 * lin_tol / diag)
+            data = [_face_data(i, f, lin_tol) for i, f in enumerate(faces(solid))]
+            volume = _volume(solid, any(f.kind in ("extrusion", "revolution") for f in data))
+    except OCCError as err:  # (a face of zero width in u: OCC throws reading it)
+        if _is_valid(solid):
+            raise
+        raise InputError(
+            f"the solid is not valid (OCC's BRepCheck_Analyzer rejects it) and OCC fails "
+            f"reading it: {err}"
+        ) from err
     reasons: list[str] = []
     ext = _recognize_extrusion(solid, data, lin_tol, ang_tol, volume, reasons)
     rev = _recognize_revolution(solid, data, lin_tol, ang_tol, volume, diag, reasons)
@@ -548,12 +557,16 @@ def recognize_solid(obj: Any, tol: float | None = None) -> SolidKind:
     if rev is not None:
         return replace(rev, **own)
     invalid = ""
-    with occ_guard("checking the solid"):
-        if not BRepCheck_Analyzer(solid).IsValid():
-            invalid = " (and it is not a valid solid: OCC's BRepCheck_Analyzer rejects it)"
+    if not _is_valid(solid):
+        invalid = " (and it is not a valid solid: OCC's BRepCheck_Analyzer rejects it)"
     raise NotExtrusionOrRevolutionError(
         "the solid is neither an extrusion nor a revolution" + invalid + ": " + "; ".join(reasons)
     )
+
+
+def _is_valid(solid: TopoDS_Shape) -> bool:
+    with occ_guard("checking the solid"):
+        return bool(BRepCheck_Analyzer(solid).IsValid())
 
 
 def _recognize_extrusion(
