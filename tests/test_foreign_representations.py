@@ -275,3 +275,19 @@ def test_a_closed_clamped_spline_wraps_across_its_seam() -> None:
     blob = F.bspline_blob([0.6274, 0.7225, 0.7523, 0.7767, 0.9978, 0.8963, 0.8111, 0.9945])
     plate = nurbs(M.prism(blob, 0.4, F.random_placement(5)))
     _check(plate, "clamped blob plate")
+
+
+@pytest.mark.parametrize("name", ["box", "tube", "cone_pie_slice"])
+def test_an_inside_out_solid_is_read_as_the_solid(name: str) -> None:
+    """A solid whose shell faces inward (negative volume; OCC's checker accepts it, some
+    writers produce it) is the same solid. Read inside out, the box's caps faced into it
+    (refused) and the tube was read as a revolution whose MAT lay outside the solid. The
+    oracle measures the result against the solid the right way out."""
+    plain = SHAPES[name]()
+    inside_out = TopoDS.Solid_s(plain.Reversed())
+    assert BRepCheck_Analyzer(inside_out).IsValid()
+    _same_reading(medialcad.recognize(plain), medialcad.recognize(inside_out))
+    result = medialcad.medial_axis(inside_out)
+    rep = M.check(plain, result, f"{name}/inside out", n_complete=60)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())

@@ -529,7 +529,7 @@ def _single_solid(obj: Any) -> TopoDS_Shape:
 
 def recognize_solid(obj: Any, tol: float | None = None) -> SolidKind:
     """See :func:`medialcad.recognition.recognize`."""
-    solid = _single_solid(obj)
+    solid = _outward(_single_solid(obj))
     try:
         with occ_guard("analysing the solid"):
             box = Bnd_Box()
@@ -562,6 +562,17 @@ def recognize_solid(obj: Any, tol: float | None = None) -> SolidKind:
     raise NotExtrusionOrRevolutionError(
         "the solid is neither an extrusion nor a revolution" + invalid + ": " + "; ".join(reasons)
     )
+
+
+def _outward(solid: TopoDS_Shape) -> TopoDS_Shape:
+    """``solid`` with its faces' normals pointing out of it: an inside-out solid (a
+    negative volume, which OCC's checker accepts) is reversed. Read inside out, a box's
+    caps faced into it (refused) and a tube was read as a revolution whose MAT lay
+    outside the solid."""
+    with occ_guard("orienting the solid"):
+        props = GProp_GProps()
+        BRepGProp.VolumeProperties_s(solid, props)
+        return solid.Reversed() if props.Mass() < 0 else solid
 
 
 def _is_valid(solid: TopoDS_Shape) -> bool:
