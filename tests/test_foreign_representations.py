@@ -19,6 +19,7 @@ completeness, topology, ``BRepCheck``).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -26,12 +27,15 @@ from typing import Any
 import cadquery as cq
 import numpy as np
 import pytest
+from hypothesis import assume, given
+from hypothesis import strategies as st
 from OCP.BRep import BRep_Tool
 from OCP.BRepBuilderAPI import BRepBuilderAPI_NurbsConvert
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.Geom import Geom_BSplineSurface
 from OCP.GProp import GProp_GProps
+from OCP.ShapeAnalysis import ShapeAnalysis_ShapeTolerance
 from OCP.ShapeUpgrade import ShapeUpgrade_ShapeDivideArea, ShapeUpgrade_ShapeDivideClosed
 from OCP.TopAbs import TopAbs_FACE, TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
@@ -40,6 +44,10 @@ from OCP.TopoDS import TopoDS, TopoDS_Shape
 import medialcad
 from medialcad.recognition import Extrusion, Revolution
 from tests import _mat3d as M
+from tests import faces as F
+from tests import oracles as O
+from tests.test_mat3d_extrusion import HYPO3
+from tests.test_mat3d_revolution import revolve
 
 SOLIDS = Path(__file__).resolve().parents[1] / "fixtures" / "step" / "solids"
 
@@ -95,8 +103,6 @@ def _revolve(points: list[tuple[float, float]], angle: float, x_axis: float = 0.
 
 def _blob_ring() -> Any:
     """A B-spline blob revolved a full turn about an axis clear of it."""
-    from tests import faces as F
-    from tests.test_mat3d_revolution import revolve
 
     blob = F.bspline_blob([0.6274, 0.7225, 0.7523, 0.7767, 0.9978, 0.8963, 0.8111, 0.9945])
     return revolve(F.place(blob, F.Placement(np.eye(3), np.array([1.5, 0.0, 0.0]))))
@@ -261,7 +267,6 @@ def test_a_closed_clamped_spline_wraps_across_its_seam() -> None:
     from OCP.TopAbs import TopAbs_EDGE
 
     from medialcad.mat3d.segments import split_branches
-    from tests import faces as F
 
     reading = medialcad.recognize(nurbs(_blob_ring()))
     ex = TopExp_Explorer(reading.profile, TopAbs_EDGE)
@@ -291,3 +296,62 @@ def test_an_inside_out_solid_is_read_as_the_solid(name: str) -> None:
     rep = M.check(plain, result, f"{name}/inside out", n_complete=60)
     print(rep.line())
     assert not rep.failures(), "; ".join(rep.failures())
+
+
+# --------------------------------------------------------------------------- random solids
+
+# derandomized unless MEDIALCAD_HYPOTHESIS_RANDOM; MEDIALCAD_HYPOTHESIS_EXAMPLES_3D each
+_PROFILES = st.one_of(
+    F.random_bspline_blob(),
+    F.star_polygon_strategy(),
+    F.polygon_with_holes_strategy(),
+    F.line_arc_fillet_mix(),
+)
+_DIALECT = st.sampled_from(["nurbs", "split_closed", "split_faces"])
+
+
+@HYPO3
+@given(face=_PROFILES, factor=st.floats(0.05, 3.0), dialect=_DIALECT, seed=st.integers(0, 2**16))
+def test_random_extrusion_in_another_dialect(
+    face: Any, factor: float, dialect: str, seed: int
+) -> None:
+    solid = M.prism(face, factor * O.bbox_diagonal(face), F.random_placement(seed))
+    _random_check(DIALECTS[dialect](solid), f"extrusion L={factor:.2f}d {dialect} seed{seed}")
+
+
+@HYPO3
+@given(
+    face=_PROFILES,
+    margin=st.floats(0.05, 3.0),
+    angle=st.one_of(st.floats(math.radians(5), math.radians(355)), st.just(2 * math.pi)),
+    dialect=_DIALECT,
+    seed=st.integers(0, 2**16),
+)
+def test_random_revolution_in_another_dialect(
+    face: Any, margin: float, angle: float, dialect: str, seed: int
+) -> None:
+    shift = F.Placement(np.eye(3), np.array([1.0 + margin, 0.0, 0.0]))
+    solid = revolve(F.place(face, shift), angle, F.random_placement(seed))
+    label = f"revolution {math.degrees(angle):.0f}deg {dialect} seed{seed}"
+    _random_check(DIALECTS[dialect](solid), label)
+
+
+def _random_check(solid: TopoDS_Shape, label: str) -> None:
+    """The oracles, or a clear refusal of an input OCC's own rewriting broke (its checker
+    rejects the solid, or the B-rep's tolerance grew past the solid's tolerance)."""
+    broken = not BRepCheck_Analyzer(solid).IsValid() or ShapeAnalysis_ShapeTolerance().Tolerance(
+        solid, 1
+    ) > 1e-5 * O.bbox_diagonal(solid)
+    with F.dump_on_failure(solid, label.replace(" ", "-")):
+        try:
+            result = medialcad.medial_axis(solid)
+        except medialcad.InputError:
+            if broken:
+                return
+            raise
+        assume(not broken)
+        rep = M.check(
+            solid, result, label, per_face=10, max_faces=16, max_edges=16, n_complete=60
+        )  # fmt: skip
+        print(rep.line())
+        assert not rep.failures(), f"{label}: " + "; ".join(rep.failures())
