@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -210,21 +210,7 @@ def _unswing(s: Segment, tol: float) -> Segment:
             break
         drop = lo + int(np.argmin(near[lo : hi + 1]))
         keep = np.delete(keep, drop)
-    if len(keep) == len(w):
-        return s
-    return Segment(
-        s.branch,
-        w[keep],
-        s.centre[keep],
-        s.radius[keep],
-        s.foot_a[keep],
-        s.foot_b[keep],
-        s.element_a,
-        s.element_b,
-        s.start,
-        s.end,
-        s.single,
-    )
+    return s if len(keep) == len(w) else _rows(s, keep)
 
 
 def _dedupe(s: Segment, gap: float = 1e-9) -> Segment:
@@ -237,20 +223,18 @@ def _dedupe(s: Segment, gap: float = 1e-9) -> Segment:
         j = int(np.nonzero(keep[:-1])[0][-1])
         if w[-1] - w[j] <= gap and j > 0:
             keep[j] = False
-    if np.all(keep):
-        return s
-    return Segment(
-        s.branch,
-        w[keep],
-        s.centre[keep],
-        s.radius[keep],
-        s.foot_a[keep],
-        s.foot_b[keep],
-        s.element_a,
-        s.element_b,
-        s.start,
-        s.end,
-        s.single,
+    return s if np.all(keep) else _rows(s, keep)
+
+
+def _rows(s: Segment, keep: NDArray[Any]) -> Segment:
+    """``s`` with only the rows ``keep`` (indices or a mask)."""
+    return replace(
+        s,
+        w=s.w[keep],
+        centre=s.centre[keep],
+        radius=s.radius[keep],
+        foot_a=s.foot_a[keep],
+        foot_b=s.foot_b[keep],
     )
 
 
