@@ -125,6 +125,7 @@ SHAPES: dict[str, Callable[[], TopoDS_Shape]] = {
     "trapezoid_ring": lambda: _revolve([(3, 0), (6, 0), (5, 2), (3.5, 3)], 360),
     "cone_pie_slice": lambda: _revolve([(0, 0), (4, 0), (1, 5), (0, 5)], 120),
     "blob_ring": lambda: _blob_ring(),
+    "stepped_shaft": lambda: _revolve([(0, 0), (3, 0), (3, 2), (2, 2), (2, 5), (0, 5)], 360),
 }
 KIND = {
     "box": Extrusion,
@@ -136,6 +137,7 @@ KIND = {
     "trapezoid_ring": Revolution,
     "cone_pie_slice": Revolution,
     "blob_ring": Revolution,
+    "stepped_shaft": Revolution,
 }
 DIALECTS = {"nurbs": nurbs, "split_closed": split_closed, "split_faces": split_faces}
 

@@ -354,8 +354,16 @@ def _plucker_axis(data: list[_FaceData]) -> tuple[FloatArray, FloatArray] | None
     if not rows:
         return None
     m = np.vstack(rows)
-    _, _s, vt = np.linalg.svd(m, full_matrices=False)
+    _, sv, vt = np.linalg.svd(m, full_matrices=False)
     v = vt[-1]
+    if len(sv) >= 2 and sv[-2] <= 1e-6 * sv[0]:
+        # a second solution: when every normal is perpendicular to the axis (coaxial
+        # cylinders and planes: a stepped shaft written NURBS-only) the line at infinity
+        # of the planes across the axis, (0, a), meets every normal line too; the axis
+        # is the combination of the two with the largest direction part
+        dd = vt[-2:, :3].T  # (3, 2)
+        _, _, ct = np.linalg.svd(dd)
+        v = ct[0] @ vt[-2:]
     d, mom = v[:3], v[3:]
     nd = float(np.linalg.norm(d))
     if nd < 1e-9:
