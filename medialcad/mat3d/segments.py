@@ -605,7 +605,9 @@ def _split(
             new = cut[6] - prev[6]
             ga = cut[4] if 0 in new else prev[4]
             gb = cut[5] if 1 in new else prev[5]
-            merged[-1] = (prev[0], prev[1], prev[2], prev[3], ga, gb, prev[6] | cut[6])
+            # (a level at a transition stays a level: the sheet ends there)
+            lead = cut if prev[1] == "transition" and cut[1] != "transition" else prev
+            merged[-1] = (prev[0], lead[1], lead[2], lead[3], ga, gb, prev[6] | cut[6])
             continue
         merged.append(cut)
     # where each side changes element

@@ -160,6 +160,7 @@ def _planar_isos(
     the surface's meridians where it is a revolution in rational form. The iso's
     parameter is solved (secant steps) so that its point at ``(u, v)`` lies in the plane."""
     u0, u1, v0, v1 = bounds
+    u_lo, u_hi, v_lo, v_hi = s.Bounds()
     out = []
     size = 1.0 + float(np.linalg.norm(frame.origin))
     for v_iso in (False, True):  # the u-iso (a curve in v), then the v-iso
@@ -172,19 +173,42 @@ def _planar_isos(
             pt = s.Value(q, x) if v_iso else s.Value(x, q)
             return float((_xyz(pt) - frame.origin) @ frame.zdir)
 
-        x0, f0 = p, off(p)
-        x1 = p + 1e-6 * (1.0 + abs(p))
-        f1 = off(x1)
-        for _ in range(30):
-            if f1 == f0 or abs(f1) <= 1e-15 * size:
-                break
-            x0, x1, f0 = x1, x1 - f1 * (x1 - x0) / (f1 - f0), f1
-            f1 = off(x1)
-        iso = iso_of(float(x1))
-        pts = np.array([_value(iso, t) for t in np.linspace(lo, hi, 17)])
+        try:
+            x = _secant_root(off, p, size)
+            if x is None:
+                continue
+            k0, k1, periodic = (
+                (u_lo, u_hi, s.IsUPeriodic()) if not v_iso else (v_lo, v_hi, s.IsVPeriodic())
+            )
+            if periodic:
+                x = k0 + (x - k0) % (k1 - k0)
+            elif not k0 <= x <= k1:
+                continue  # off the surface: an extrapolated curve is no meridian
+            iso = iso_of(float(x))
+            pts = np.array([_value(iso, t) for t in np.linspace(lo, hi, 17)])
+        except Exception as err:  # an OCC failure costs this iso-curve only
+            if not is_occ_exception(err):
+                raise
+            continue
         if float(np.abs((pts - frame.origin) @ frame.zdir).max()) <= 1e-3 * tol:
             out.append((iso, (lo, hi)))
     return out
+
+
+def _secant_root(f: Any, x: float, size: float) -> float | None:
+    """A root of ``f`` near ``x`` by secant steps, or None where they do not converge
+    (to ``1e-12`` of ``size``)."""
+    x0, f0 = x, f(x)
+    x1 = x + 1e-6 * (1.0 + abs(x))
+    f1 = f(x1)
+    for _ in range(30):
+        if f1 == f0 or abs(f1) <= 1e-15 * size:
+            break
+        x0, x1, f0 = x1, x1 - f1 * (x1 - x0) / (f1 - f0), f1
+        if not math.isfinite(x1):
+            return None
+        f1 = f(x1)
+    return x1 if math.isfinite(f1) and abs(f1) <= 1e-12 * size else None
 
 
 def _iso_piece(

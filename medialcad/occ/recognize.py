@@ -118,10 +118,11 @@ def _face_data(index: int, face: TopoDS_Face, flat_tol: float) -> _FaceData:
     stype = surf.GetType()
     kind = _KINDS.get(stype, "free")
     axis: tuple[FloatArray, FloatArray] | None = None
+    fitted = False
     if kind == "free":
         flat = GeomLib_IsPlanarSurface(BRep_Tool.Surface_s(face), flat_tol)
         if flat.IsPlanar():
-            kind = "plane"
+            kind, fitted = "plane", True
             ax = flat.Plan().Axis()
             axis = (_xyz(ax.Location()), _xyz(ax.Direction()))
     elif kind == "plane":
@@ -161,6 +162,15 @@ def _face_data(index: int, face: TopoDS_Face, flat_tol: float) -> _FaceData:
     ok = norm >= 1e-12 * scale  # drop poles (sphere, cone apex)
     pts = raw[ok, :3]
     nrm = flip * n[ok] / norm[ok, None]
+    if fitted and axis is not None and len(nrm):
+        # the plane's normal is its sampled normals' mean (the fitted one may tilt by
+        # tol / size); a face flat only within the tolerance, whose sampled normals
+        # spread, stays free-form: they rule, as for any free-form face
+        mean = _unit(nrm.mean(axis=0)) * (1.0 if float(nrm.mean(axis=0) @ axis[1]) >= 0 else -1.0)
+        if float(np.linalg.norm(np.cross(nrm, mean), axis=1).max()) > 1e-7:
+            kind, axis = "free", None
+        else:
+            axis = (axis[0], mean)
     vmap = TopTools_IndexedMapOfShape()
     TopExp.MapShapes_s(face, TopAbs_VERTEX, vmap)
     verts = [
@@ -356,11 +366,13 @@ def _plucker_axis(data: list[_FaceData]) -> tuple[FloatArray, FloatArray] | None
     m = np.vstack(rows)
     _, sv, vt = np.linalg.svd(m, full_matrices=False)
     v = vt[-1]
-    if len(sv) >= 2 and sv[-2] <= 1e-6 * sv[0]:
+    if len(sv) >= 2 and sv[-2] <= 1e-6 * sv[0] and float(np.linalg.norm(v[:3])) < 1e-3:
         # a second solution: when every normal is perpendicular to the axis (coaxial
         # cylinders and planes: a stepped shaft written NURBS-only) the line at infinity
-        # of the planes across the axis, (0, a), meets every normal line too; the axis
-        # is the combination of the two with the largest direction part
+        # of the planes across the axis, (0, a), meets every normal line too; where the
+        # least singular vector is that one (no direction part), the axis is the
+        # combination of the two with the largest direction part (a narrow sweep, 5
+        # degrees, has a nearly null second vector too, and its least is the axis)
         dd = vt[-2:, :3].T  # (3, 2)
         _, _, ct = np.linalg.svd(dd)
         v = ct[0] @ vt[-2:]
@@ -429,8 +441,12 @@ def _section(solid: TopoDS_Shape, frame: Frame, size: float) -> TopoDS_Face:
     """The meridian section of ``solid`` in the half-plane ``x >= 0`` of ``frame``."""
     o, x, _y = frame.origin, frame.xdir, frame.ydir
     ax = gp_Ax3(gp_Pnt(*o), gp_Dir(*frame.zdir), gp_Dir(*x))
-    with occ_guard("cutting the meridian section"):
-        fast = _plane_section(solid, ax, frame, 1e-7 * size)
+    try:
+        with occ_guard("cutting the meridian section by its plane"):
+            fast = _plane_section(solid, ax, frame, 1e-7 * size)
+    except OCCError as err:  # the Boolean common below may still cut it
+        log.debug("plane section failed: %s", err)
+        fast = None
     if fast is not None:
         return fast
     with occ_guard("cutting the meridian section"):
@@ -492,12 +508,28 @@ def _plane_section(
         return None
     fix = ShapeFix_Face(mk.Face())
     fix.Perform()
-    face = TopoDS.Face_s(fix.Face())
+    pieces = faces(fix.Result())
+    if len(pieces) != 1:  # a "hole" outside the outer wire: two regions, not a profile
+        return None
+    face = pieces[0]
+    if len(_wires(face)) != len(loops):
+        return None
     want = loops[0][0] - sum(a for a, _ in loops[1:])
     area = _area_centroid(face)[0]
     if not BRepCheck_Analyzer(face).IsValid() or abs(area - want) > 1e-9 * loops[0][0]:
         return None
     return face
+
+
+def _wires(face: TopoDS_Face) -> list[Any]:
+    from OCP.TopAbs import TopAbs_WIRE
+    from OCP.TopExp import TopExp_Explorer
+
+    out, ex = [], TopExp_Explorer(face, TopAbs_WIRE)
+    while ex.More():
+        out.append(ex.Current())
+        ex.Next()
+    return out
 
 
 def _volume(shape: TopoDS_Shape, swept_faces: bool = False) -> float:
@@ -537,8 +569,9 @@ def _single_solid(obj: Any) -> TopoDS_Shape:
 
 def recognize_solid(obj: Any, tol: float | None = None) -> SolidKind:
     """See :func:`medialcad.recognition.recognize`."""
-    solid = _outward(_single_solid(obj))
+    solid = _single_solid(obj)
     try:
+        solid = _outward(solid)
         with occ_guard("analysing the solid"):
             box = Bnd_Box()
             BRepBndLib.Add_s(solid, box, False)
