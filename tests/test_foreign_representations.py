@@ -37,11 +37,11 @@ from OCP.Geom import Geom_BSplineSurface
 from OCP.GProp import GProp_GProps
 from OCP.ShapeAnalysis import ShapeAnalysis_ShapeTolerance
 from OCP.ShapeUpgrade import ShapeUpgrade_ShapeDivideArea, ShapeUpgrade_ShapeDivideClosed
-from OCP.TopAbs import TopAbs_FACE, TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Shape
 
 import medialcad
+from medialcad.occ.shapes import faces
 from medialcad.recognition import Extrusion, Revolution
 from tests import _mat3d as M
 from tests import faces as F
@@ -52,23 +52,11 @@ from tests.test_mat3d_revolution import revolve
 SOLIDS = Path(__file__).resolve().parents[1] / "fixtures" / "step" / "solids"
 
 
-def _solid(shape: TopoDS_Shape) -> TopoDS_Shape:
-    return TopoDS.Solid_s(TopExp_Explorer(shape, TopAbs_SOLID).Current())
-
-
-def _faces(shape: TopoDS_Shape) -> list[Any]:
-    out, ex = [], TopExp_Explorer(shape, TopAbs_FACE)
-    while ex.More():
-        out.append(TopoDS.Face_s(ex.Current()))
-        ex.Next()
-    return out
-
-
 def nurbs(shape: TopoDS_Shape) -> TopoDS_Shape:
     """Every face and edge as a B-spline."""
     conv = BRepBuilderAPI_NurbsConvert(shape, True)
-    out = _solid(conv.Shape())
-    assert all(isinstance(BRep_Tool.Surface_s(f), Geom_BSplineSurface) for f in _faces(out))
+    out = M.single_solid(conv.Shape())
+    assert all(isinstance(BRep_Tool.Surface_s(f), Geom_BSplineSurface) for f in faces(out))
     return out
 
 
@@ -77,7 +65,7 @@ def split_closed(shape: TopoDS_Shape) -> TopoDS_Shape:
     div = ShapeUpgrade_ShapeDivideClosed(shape)
     div.SetNbSplitPoints(1)
     div.Perform()
-    return _solid(div.Result())
+    return M.single_solid(div.Result())
 
 
 def split_faces(shape: TopoDS_Shape) -> TopoDS_Shape:
@@ -86,7 +74,7 @@ def split_faces(shape: TopoDS_Shape) -> TopoDS_Shape:
     div.SetSplittingByNumber(True)
     div.SetNumbersUVSplits(3, 3)
     div.Perform()
-    return _solid(div.Result())
+    return M.single_solid(div.Result())
 
 
 def nurbs_through_step(shape: TopoDS_Shape, tmp: Path) -> TopoDS_Shape:

@@ -66,7 +66,7 @@ from medialcad.errors import (
 from medialcad.frame import Frame
 from medialcad.occ.io import occ_guard
 from medialcad.occ.meridian import exact_meridian
-from medialcad.occ.shapes import as_topods, compound, edges, faces, solids_or_shells
+from medialcad.occ.shapes import as_topods, compound, edges, faces, solids_or_shells, wires
 from medialcad.recognition import Extrusion, Revolution, SolidKind
 
 __all__ = ["recognize_solid"]
@@ -166,7 +166,8 @@ def _face_data(index: int, face: TopoDS_Face, flat_tol: float) -> _FaceData:
         # the plane's normal is its sampled normals' mean (the fitted one may tilt by
         # tol / size); a face flat only within the tolerance, whose sampled normals
         # spread, stays free-form: they rule, as for any free-form face
-        mean = _unit(nrm.mean(axis=0)) * (1.0 if float(nrm.mean(axis=0) @ axis[1]) >= 0 else -1.0)
+        mean = _unit(nrm.mean(axis=0))
+        mean = mean if float(mean @ axis[1]) >= 0 else -mean
         if float(np.linalg.norm(np.cross(nrm, mean), axis=1).max()) > 1e-7:
             kind, axis = "free", None
         else:
@@ -491,11 +492,11 @@ def _plane_section(
             return None  # on or across the axis
     if half.Length() == 0:
         return None
-    wires = TopTools_HSequenceOfShape()
-    ShapeAnalysis_FreeBounds.ConnectEdgesToWires_s(half, within, False, wires)
+    joined = TopTools_HSequenceOfShape()
+    ShapeAnalysis_FreeBounds.ConnectEdgesToWires_s(half, within, False, joined)
     loops = []
-    for i in range(1, wires.Length() + 1):
-        w = TopoDS.Wire_s(wires.Value(i))
+    for i in range(1, joined.Length() + 1):
+        w = TopoDS.Wire_s(joined.Value(i))
         mk = BRepBuilderAPI_MakeFace(pln, w, True)
         if not BRep_Tool.IsClosed_s(w) or not mk.IsDone():
             return None
@@ -512,24 +513,13 @@ def _plane_section(
     if len(pieces) != 1:  # a "hole" outside the outer wire: two regions, not a profile
         return None
     face = pieces[0]
-    if len(_wires(face)) != len(loops):
+    if len(wires(face)) != len(loops):
         return None
     want = loops[0][0] - sum(a for a, _ in loops[1:])
     area = _area_centroid(face)[0]
     if not BRepCheck_Analyzer(face).IsValid() or abs(area - want) > 1e-9 * loops[0][0]:
         return None
     return face
-
-
-def _wires(face: TopoDS_Face) -> list[Any]:
-    from OCP.TopAbs import TopAbs_WIRE
-    from OCP.TopExp import TopExp_Explorer
-
-    out, ex = [], TopExp_Explorer(face, TopAbs_WIRE)
-    while ex.More():
-        out.append(ex.Current())
-        ex.Next()
-    return out
 
 
 def _volume(shape: TopoDS_Shape, swept_faces: bool = False) -> float:

@@ -21,7 +21,14 @@ from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.GeomAbs import GeomAbs_Plane
 from OCP.GeomLib import GeomLib_IsPlanarSurface
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_ShapeEnum, TopAbs_SHELL, TopAbs_SOLID
+from OCP.TopAbs import (
+    TopAbs_EDGE,
+    TopAbs_FACE,
+    TopAbs_ShapeEnum,
+    TopAbs_SHELL,
+    TopAbs_SOLID,
+    TopAbs_WIRE,
+)
 from OCP.TopExp import TopExp
 from OCP.TopoDS import (
     TopoDS,
@@ -31,6 +38,7 @@ from OCP.TopoDS import (
     TopoDS_Shape,
     TopoDS_Shell,
     TopoDS_Solid,
+    TopoDS_Wire,
 )
 from OCP.TopTools import TopTools_IndexedDataMapOfShapeListOfShape, TopTools_IndexedMapOfShape
 
@@ -46,6 +54,7 @@ __all__ = [
     "single_face",
     "solids",
     "solids_or_shells",
+    "wires",
 ]
 
 _KIND_NAMES = {
@@ -219,6 +228,11 @@ def solids_or_shells(shape: TopoDS_Shape) -> list[TopoDS_Solid]:
 def edges(shape: TopoDS_Shape) -> list[TopoDS_Edge]:
     """Distinct edges of ``shape``, in exploration order."""
     return [TopoDS.Edge_s(s) for s in _unique(shape, TopAbs_EDGE)]
+
+
+def wires(shape: TopoDS_Shape) -> list[TopoDS_Wire]:
+    """Distinct wires of ``shape``, in exploration order."""
+    return [TopoDS.Wire_s(s) for s in _unique(shape, TopAbs_WIRE)]
 
 
 def shape_kind(shape: TopoDS_Shape) -> str:
