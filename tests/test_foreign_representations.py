@@ -275,6 +275,22 @@ def test_a_closed_clamped_spline_wraps_across_its_seam() -> None:
     _check(plate, "clamped blob plate")
 
 
+def test_a_sphere_in_halves_has_no_axis_through_two_equal_centres() -> None:
+    """A sphere cut in halves is two spherical faces with one centre. The axis through two
+    spheres' centres is asked only of distinct centres: the unit vector of a zero vector
+    gave a NaN candidate and a RuntimeWarning (an error where warnings are errors). The
+    ball in halves is still the ball; the bumped box in halves is still refused."""
+    import warnings
+
+    ball = cq.Workplane().sphere(3).val().wrapped
+    (bumped,) = medialcad.read_step(SOLIDS / "box_with_spherical_bump.step")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        _same_reading(medialcad.recognize(ball), medialcad.recognize(split_closed(ball)))
+        with pytest.raises(medialcad.NotExtrusionOrRevolutionError):
+            medialcad.recognize(split_closed(bumped))
+
+
 @pytest.mark.parametrize("name", ["box", "tube", "cone_pie_slice"])
 def test_an_inside_out_solid_is_read_as_the_solid(name: str) -> None:
     """A solid whose shell faces inward (negative volume; OCC's checker accepts it, some

@@ -395,8 +395,14 @@ def _revolution_candidates(data: list[_FaceData]) -> list[tuple[FloatArray, Floa
         planes = [f for f in data if f.kind == "plane" and f.axis is not None]
         if spheres:
             centre = spheres[0].axis[0]  # type: ignore[index]
-            if len(spheres) > 1:
-                cands.append((centre, _unit(spheres[1].axis[0] - centre)))  # type: ignore[index]
+            # the line through two spheres' centres (a sphere's split pieces share theirs)
+            apart = [
+                s.axis[0] - centre  # type: ignore[index]
+                for s in spheres[1:]
+                if np.linalg.norm(s.axis[0] - centre) > 1e-9 * (1 + np.linalg.norm(centre))  # type: ignore[index]
+            ]
+            if apart:
+                cands.append((centre, _unit(apart[0])))
             for p in planes:
                 cands.append((centre, _unit(p.axis[1])))  # type: ignore[index]
             # a spherical wedge: the axis is where its two caps' planes meet
