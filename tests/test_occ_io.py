@@ -328,3 +328,40 @@ def test_step_writer_silent_drop_is_an_error(tmp_path: Path) -> None:
 def test_brep_keeps_offset_curves(tmp_path: Path) -> None:
     (shape,) = read_shapes(write_brep(_offset_curve_face(), tmp_path / "offset.brep"))
     assert len(faces(shape)) == 1
+
+
+def test_assembly_instances_are_read_at_their_placements(tmp_path: Path) -> None:
+    """A STEP assembly (one part placed twice, a nested sub-assembly) gives one solid per
+    instance where the assembly puts it, and each instance's MAT lies in that placed solid
+    (the oracles against the placed solid built here, not the one read back)."""
+    import cadquery as cq
+
+    from medialcad import medial_axis
+    from tests import _mat3d as M
+
+    box = cq.Workplane().box(10, 4, 2)
+    tube = cq.Workplane().circle(3).circle(1).extrude(5)
+    places = {
+        "box": (box, cq.Location((20, 0, 0), (1, 1, 0), 30)),
+        "tube1": (tube, cq.Location((0, 10, 0))),
+        "tube2": (tube, cq.Location((0, -10, 5), (1, 0, 0), 90)),
+    }
+    asm = cq.Assembly()
+    for name, (part, loc) in places.items():
+        asm.add(part, name=name, loc=loc)
+    sub = cq.Assembly().add(box, name="inner", loc=cq.Location((0, 0, 30)))
+    asm.add(sub, name="sub", loc=cq.Location((5, 5, 5)))
+    path = tmp_path / "assembly.step"
+    asm.export(str(path))
+    expected = [part.val().moved(loc) for part, loc in places.values()]
+    expected.append(box.val().moved(cq.Location((5, 5, 35))))
+    read = [s for shape in read_shapes(path) for s in solids(shape)]
+    assert len(read) == len(expected)
+    for want in expected:
+        c = want.Center()
+        near = [s for s in read if (cq.Shape.cast(s).Center() - c).Length < 1e-6]
+        assert len(near) == 1, f"no instance at {c}"
+        assert _volume(near[0]) == pytest.approx(want.Volume(), rel=1e-9)
+        result = medial_axis(near[0])
+        rep = M.check(want.wrapped, result, f"instance at {c}", n_complete=40)
+        assert not rep.failures(), "; ".join(rep.failures())
