@@ -105,13 +105,39 @@ def _foot_param(
 
 def _keeper(e: Element, lo: float, hi: float) -> Callable[[FloatArray], FloatArray]:
     """Keeps Newton's parameters on an element: clamped to ``[lo, hi]``, or wrapped when
-    the element is a whole periodic curve (a closed B-spline is one element: clamping at its
-    seam left the feet there stuck while the centres moved on)."""
-    assert e.piece is not None
-    period = getattr(e.piece.curve, "period", None)
-    if period is not None and hi - lo >= period * (1.0 - 1e-12):
+    the element wraps round (:func:`_wrap_span`; a closed B-spline is one element: clamping
+    at its seam left the feet there stuck while the centres moved on)."""
+    if _wrap_span(e) is not None:
         return lambda t: lo + np.mod(np.asarray(t, dtype=float) - lo, hi - lo)
     return lambda t: np.clip(t, lo, hi)
+
+
+_WRAP: dict[int, tuple[object, float | None]] = {}
+
+
+def _wrap_span(e: Element) -> float | None:
+    """The parameter span over which an edge element wraps round: a whole periodic curve's
+    period, or the whole span of an edge closed on itself (its ends within 1e-7 of its
+    size). Other systems write a closed curve clamped, its seam a corner of ~1e-6 rad (an
+    offset curve approximated by OCC: 1.09e-6), which is not read as periodic; a side's
+    feet pass over that seam as over a periodic curve's. Taken the long way round, rows
+    solved from the feet either side of it came out 150 tol off."""
+    assert e.piece is not None
+    period = _closed_period(e)
+    if period is not None:
+        return period
+    piece = e.piece
+    got = _WRAP.get(id(piece))
+    if got is None or got[0] is not piece:
+        if len(_WRAP) > 512:
+            _WRAP.clear()
+        lo, hi = sorted((piece.t0, piece.t1))
+        pts = piece.curve.point(np.linspace(lo, hi, 9))
+        size = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
+        closed = size > 0 and float(np.linalg.norm(pts[0] - pts[-1])) <= 1e-7 * size
+        got = (piece, hi - lo if closed else None)
+        _WRAP[id(piece)] = got
+    return got[1]
 
 
 def _joint(
@@ -760,7 +786,7 @@ def _astray(boundary: Boundary, element: int, t: FloatArray, own: FloatArray) ->
     of the feet of rows ``j`` and ``j + 1``, widened by a quarter of their span on either
     side (modulo the period of a closed curve)."""
     lo, span = own[:-1], np.diff(own)
-    period = _closed_period(boundary.elements[element])
+    period = _wrap_span(boundary.elements[element])
     if period is not None:  # the short way round
         span = (span + 0.5 * period) % period - 0.5 * period
     mid = lo + 0.5 * span
@@ -862,16 +888,21 @@ def _solve_from(
     """:func:`_from_foot` from side a's foot (``(centre, r, foot a, foot b)`` a row)."""
     ea, eb = boundary.elements[el_a], boundary.elements[el_b]
     assert ea.piece is not None and eb.piece is not None
-    ta = _project_params(boundary, el_a, np.vstack([foot_a[rows], foot_a[rows + 1]]))
-    tb = _project_params(boundary, el_b, np.vstack([foot_b[rows], foot_b[rows + 1]]))
+    # (the feet lie on their curves: each is its own start, from the dense samples; from
+    # 65 points Newton could start across a narrow part of the curve and stay there)
+    fa = np.vstack([foot_a[rows], foot_a[rows + 1]])
+    fb = np.vstack([foot_b[rows], foot_b[rows + 1]])
+    ta = _project_params(boundary, el_a, fa, fa)
+    tb = _project_params(boundary, el_b, fb, fb)
     m = len(rows)
     ta0, ta1, tb0, tb1 = ta[:m], ta[m:], tb[:m], tb[m:]
-    period = _closed_period(ea)
+    period = _wrap_span(ea)
     if period is not None:  # across the seam of a closed curve: the short way round
         ta1 = ta0 + (ta1 - ta0 + 0.5 * period) % period - 0.5 * period
-    b, n, _ = boundary.frame_at(ea, 0.5 * (ta0 + ta1))
+    lo_a, hi_a = sorted((ea.piece.t0, ea.piece.t1))
+    b, n, _ = boundary.frame_at(ea, _keeper(ea, lo_a, hi_a)(0.5 * (ta0 + ta1)))
     lo_b, hi_b = sorted((eb.piece.t0, eb.piece.t1))
-    period_b = _closed_period(eb)
+    period_b = _wrap_span(eb)
     x0, x1 = np.minimum(tb0, tb1), np.maximum(tb0, tb1)
     if period_b is not None:  # across the seam: the short way round
         wrap = x1 - x0 > 0.5 * period_b
@@ -881,16 +912,17 @@ def _solve_from(
     if period_b is None:
         lo, hi = np.maximum(lo, lo_b), np.minimum(hi, hi_b)
     curve = eb.piece.curve
+    keep = _keeper(eb, lo_b, hi_b)  # (beyond a clamped closed curve's seam: wrapped)
 
     def f(t: FloatArray) -> FloatArray:  # t (m, k)
-        q = curve.point(t.ravel()).reshape(*t.shape, 2) - b[:, None, :]
+        q = curve.point(keep(t.ravel())).reshape(*t.shape, 2) - b[:, None, :]
         bb = np.einsum("mkj,mj->mk", q, n)
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(bb > 0, np.einsum("mkj,mkj->mk", q, q) / (2.0 * bb), np.inf)
 
     # all rows together (a scalar search a row took 85 % of a B-spline extrusion's time)
     t, r = golden_minima(f, lo, hi, 120, rtol=1e-15)
-    q = np.asarray(curve.point(t), dtype=float)
+    q = np.asarray(curve.point(keep(t)), dtype=float)
     return [(b[i] + r[i] * n[i], float(r[i]), b[i].copy(), q[i]) for i in range(m)]
 
 
