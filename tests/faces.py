@@ -336,6 +336,31 @@ def bspline_blob(radii: ArrayLike, centre: ArrayLike = (0.0, 0.0)) -> TopoDS_Fac
     return _face(cq.Wire.assembleEdges([edge]))
 
 
+def clamped_closed_blob(kink: float) -> TopoDS_Face:
+    """A blob bounded by one closed clamped cubic B-spline through 16 points of
+    :func:`bspline_blob`'s test blob (not periodic, as other systems write a closed curve),
+    its end tangent turned by ``kink`` rad from its start tangent: a corner of ``|kink|``
+    at its seam, convex for ``kink < 0``."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.GeomAPI import GeomAPI_Interpolate
+    from OCP.gp import gp_Vec
+    from OCP.TColgp import TColgp_HArray1OfPnt
+
+    blob = bspline_blob([0.6274, 0.7225, 0.7523, 0.7767, 0.9978, 0.8963, 0.8111, 0.9945])
+    c = BRepAdaptor_Curve(cq.Face(blob).Edges()[0].wrapped)
+    ts = np.linspace(c.FirstParameter(), c.LastParameter(), 17)[:-1]
+    pts = TColgp_HArray1OfPnt(1, len(ts) + 1)
+    for i, t in enumerate([*ts, ts[0]]):
+        pts.SetValue(i + 1, c.Value(float(t)))
+    d = c.DN(float(ts[0]), 1)
+    cs, sn = math.cos(kink), math.sin(kink)
+    turned = gp_Vec(cs * d.X() - sn * d.Y(), sn * d.X() + cs * d.Y(), 0.0)
+    fit = GeomAPI_Interpolate(pts, False, 1e-9)
+    fit.Load(d, turned, True)
+    fit.Perform()
+    return _face(cq.Wire.assembleEdges([cq.Edge(BRepBuilderAPI_MakeEdge(fit.Curve()).Edge())]))
+
+
 def spline_pieces(n: int, bulge: float = 0.02, size: float = 50.0) -> TopoDS_Face:
     """A smooth star (``r = size (1 + 0.15 sin 7t + 0.05 sin 23t)``) written as ``n``
     B-spline edges, each through 3 of its points, the middle one moved radially by up

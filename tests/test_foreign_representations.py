@@ -291,40 +291,6 @@ def test_a_sphere_in_halves_has_no_axis_through_two_equal_centres() -> None:
             medialcad.recognize(split_closed(bumped))
 
 
-def _clamped_closed_blob(kink: float) -> TopoDS_Shape:
-    """The test blob as one closed clamped cubic B-spline through 16 of its points (not
-    periodic), its end tangent turned by ``kink`` rad from its start tangent: a corner
-    of ``|kink|`` at its seam, convex or reflex by the sign."""
-    from OCP.BRepAdaptor import BRepAdaptor_Curve
-    from OCP.BRepBuilderAPI import (
-        BRepBuilderAPI_MakeEdge,
-        BRepBuilderAPI_MakeFace,
-        BRepBuilderAPI_MakeWire,
-    )
-    from OCP.GeomAPI import GeomAPI_Interpolate
-    from OCP.gp import gp_Vec
-    from OCP.TColgp import TColgp_HArray1OfPnt
-
-    from medialcad.occ.shapes import edges
-
-    (edge,) = edges(
-        F.bspline_blob([0.6274, 0.7225, 0.7523, 0.7767, 0.9978, 0.8963, 0.8111, 0.9945])
-    )
-    c = BRepAdaptor_Curve(edge)
-    ts = np.linspace(c.FirstParameter(), c.LastParameter(), 17)[:-1]
-    pts = TColgp_HArray1OfPnt(1, len(ts) + 1)
-    for i, t in enumerate([*ts, ts[0]]):
-        pts.SetValue(i + 1, c.Value(float(t)))
-    d = c.DN(float(ts[0]), 1)
-    cs, sn = math.cos(kink), math.sin(kink)
-    turned = gp_Vec(cs * d.X() - sn * d.Y(), sn * d.X() + cs * d.Y(), 0.0)
-    fit = GeomAPI_Interpolate(pts, False, 1e-9)
-    fit.Load(d, turned, True)
-    fit.Perform()
-    wire = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(fit.Curve()).Edge()).Wire()
-    return BRepBuilderAPI_MakeFace(wire).Face()
-
-
 @pytest.mark.parametrize("kink", [3e-6, -3e-6, 1e-4, 1e-3, 0.1])
 def test_a_closed_spline_written_clamped_with_a_small_corner_at_its_seam(kink: float) -> None:
     """Other systems write a closed curve clamped, its seam a corner of ~1e-6 rad or more,
@@ -332,7 +298,7 @@ def test_a_closed_spline_written_clamped_with_a_small_corner_at_its_seam(kink: f
     from the feet either side of it were solved the long way round the curve (150 tol
     off at -3e-6: 73 tol unsound; at 1e-4 the compound failed BRepCheck). The seam of a
     curve closed on itself is now crossed as a periodic curve's."""
-    _check(M.prism(_clamped_closed_blob(kink), 0.4), f"clamped blob, seam corner {kink}")
+    _check(M.prism(F.clamped_closed_blob(kink), 0.4), f"clamped blob, seam corner {kink}")
 
 
 def test_an_offset_surface_is_read_as_what_it_is_offset_from() -> None:

@@ -52,6 +52,7 @@ from medialcad.mat2d.medial_map import (
     pair_minima,
 )
 from medialcad.mat2d.pocket import POCKET_LENGTH, pocket_rows
+from medialcad.mat2d.selfcheck import disk_excess
 from medialcad.mat2d.spline import Spline, fit_spline
 
 __all__ = ["TraceSettings", "trace_medial_graph"]
@@ -1259,6 +1260,7 @@ def _converge(
         if not added:
             graph = _assemble(tr, frame, tol, S, events, n_nodes, kept)
             _check_topology(graph, len(tr.L))
+            _check_disks(tr.b, graph, tol)
             return graph, S, used
         S = MapSamples.concat([S, *added])
     raise ComputationError("the medial axis did not reach the tolerance")
@@ -1293,6 +1295,25 @@ def _check_topology(graph: MedialGraph, loops: int) -> None:
         raise ComputationError(
             f"the medial graph has {components} components and {cycles} cycles, not 1 and "
             f"{loops - 1}: it was traced wrong (nearly flat corners below the sample spacing?)"
+        )
+
+
+_DISK_EXCESS = 3.0
+"""Tolerances a branch's disk may reach out of the face before the graph is refused (the
+45 fixture profiles' disks reach out by 0.91 tol at most; the oracles allow 2)."""
+
+
+def _check_disks(boundary: Boundary, graph: MedialGraph, tol: float) -> None:
+    """Every branch's disks lie in the face (:mod:`medialcad.mat2d.selfcheck`). A branch
+    fitted through a wrong sample swings between its samples: a spoke of a nearly flat
+    convex corner at a closed spline's seam went 645 tol out of the face and passed the
+    topology check. An error, not a wrong answer."""
+    excess, at = disk_excess(boundary, graph.branches)
+    if excess > _DISK_EXCESS * tol:
+        raise ComputationError(
+            f"the medial axis fails its own check: a disk centred at ({at[0]:.6g}, "
+            f"{at[1]:.6g}) of the face plane reaches {excess / tol:.3g} tol out of the "
+            "face (traced wrong)"
         )
 
 

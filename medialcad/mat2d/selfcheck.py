@@ -1,0 +1,171 @@
+"""The traced graph checked against the boundary, independently of how it was traced.
+
+Every point of a medial axis is the centre of a disk inside the face whose radius is its
+distance to the boundary. Each branch's spline is evaluated between its samples (where
+an interpolating spline swings when a sample is wrong) and its disk is measured against
+the boundary: a disk reaching out of the face by several tolerances (or a centre outside
+it) means the graph was traced wrong, and the engine raises instead of answering.
+
+The distance found is the least over the nearest boundary samples, each refined by
+Newton on its curve: never less than the true distance, so a disk found to reach out of
+the face by ``excess`` reaches out by at least that much.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial import cKDTree
+
+from medialcad.mat2d.boundary import Boundary
+from medialcad.mat2d.curves import LineCurve
+from medialcad.mat2d.graph import Branch
+
+__all__ = ["disk_excess"]
+
+FloatArray = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
+
+_NEAREST = 4  # boundary samples refined per point
+
+
+def _samples(boundary: Boundary) -> tuple[FloatArray, NDArray[np.int64], FloatArray]:
+    """Points along every edge element (at most ``diag / 2000`` apart, at least 16 an
+    edge), each with its element and curve parameter; a reflex vertex is its point."""
+    h = boundary.diag / 2000.0
+    pts, els, pars = [], [], []
+    for e in boundary.elements:
+        if e.piece is None:
+            assert e.vertex is not None
+            pts.append(np.asarray(e.vertex, dtype=float)[None, :])
+            els.append(np.array([e.index]))
+            pars.append(np.array([np.nan]))
+            continue
+        n = int(min(max(16, math.ceil(e.length / h)), 20000))
+        t = np.linspace(e.piece.t0, e.piece.t1, n)
+        pts.append(e.piece.curve.point(t))
+        els.append(np.full(n, e.index))
+        pars.append(t)
+    return np.vstack(pts), np.concatenate(els), np.concatenate(pars)
+
+
+def _nearest(boundary: Boundary, q: FloatArray) -> tuple[FloatArray, BoolArray]:
+    """Each point's distance to the boundary (see the module docstring) and whether it
+    lies inside the face: on the inner side of its nearest point's normal (the points
+    nearest a reflex vertex all lie inside; outside a convex corner both its edges'
+    normals point away)."""
+    pts, els, pars = _samples(boundary)
+    k = min(_NEAREST, len(pts))
+    d, j = cKDTree(pts).query(q, k=k)
+    d, j = d.reshape(len(q), k), j.reshape(len(q), k)
+    best = np.full(len(q), np.inf)
+    inside = np.ones(len(q), dtype=bool)
+    vertex = np.nonzero(np.isnan(pars[j[:, 0]]))[0]  # the nearest sample: a reflex vertex
+    best[vertex] = d[vertex, 0]
+    # a foot on a reflex corner: every point nearest to it lies inside (its edges' own
+    # normals, at their ends, read a point in the corner's fan as outside)
+    reflex = np.array([c.point for c in boundary.corners if c.turn < 0]).reshape(-1, 2)
+    near = 1e-5 * boundary.diag  # (joints meet within their gap, ~1e-6)
+    rows = np.repeat(np.arange(len(q)), k)
+    cand = j.ravel()
+    el = els[cand]
+    lines = np.array(
+        [isinstance(e.piece.curve, LineCurve) if e.piece else False for e in boundary.elements]
+    )
+    # lines, all at once: the nearest point in closed form
+    sel = np.nonzero(lines[el])[0]
+    if len(sel):
+        foot, n = _line_feet(boundary, el[sel], q[rows[sel]])
+        _update(best, inside, rows[sel], q[rows[sel]], foot, n, reflex, near)
+    # other curves, element by element: Newton from the sample
+    order = np.argsort(el, kind="stable")
+    order = order[~lines[el[order]] & ~np.isnan(pars[cand[order]])]
+    starts = np.r_[0, np.nonzero(np.diff(el[order]))[0] + 1, len(order)]
+    for a, b in itertools.pairwise(starts):
+        if a == b:
+            continue
+        idx = order[a:b]
+        e = boundary.elements[int(el[idx[0]])]
+        assert e.piece is not None
+        lo, hi = sorted((e.piece.t0, e.piece.t1))
+        t, c = pars[cand[idx]], q[rows[idx]]
+        for _ in range(8):
+            p, d1, d2 = e.piece.curve.derivs(t)
+            g = np.einsum("ij,ij->i", p - c, d1)
+            hh = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", p - c, d2)
+            t = np.clip(t - np.where(hh > 0, g / np.where(hh > 0, hh, 1.0), 0.0), lo, hi)
+        foot, n, _ = boundary.frame_at(e, t)
+        _update(best, inside, rows[idx], c, foot, n, reflex, near)
+    return best, inside
+
+
+def _line_feet(
+    boundary: Boundary, el: NDArray[np.int64], c: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Nearest points of the line elements ``el`` to the points ``c``, and the elements'
+    inward normals there."""
+    m = len(boundary.elements)
+    o, dvec, span, sense = np.zeros((m, 2)), np.ones((m, 2)), np.zeros((m, 2)), np.ones(m)
+    for e in boundary.elements:
+        if e.piece is not None and isinstance(e.piece.curve, LineCurve):
+            o[e.index], dvec[e.index] = e.piece.curve.origin, e.piece.curve.direction
+            span[e.index] = sorted((e.piece.t0, e.piece.t1))
+            sense[e.index] = 1.0 if e.piece.t1 > e.piece.t0 else -1.0
+    oo, dd = o[el], dvec[el]
+    t = np.einsum("ij,ij->i", c - oo, dd) / np.einsum("ij,ij->i", dd, dd)
+    foot = oo + np.clip(t, span[el, 0], span[el, 1])[:, None] * dd
+    tan = sense[el, None] * dd / np.linalg.norm(dd, axis=1)[:, None]
+    return foot, np.column_stack([-tan[:, 1], tan[:, 0]])
+
+
+def _update(
+    best: FloatArray,
+    inside: BoolArray,
+    rows: NDArray[np.int64],
+    c: FloatArray,
+    foot: FloatArray,
+    n: FloatArray,
+    reflex: FloatArray,
+    near: float,
+) -> None:
+    """Keep, per point, the nearest of the feet found (rows may repeat)."""
+    got = np.linalg.norm(foot - c, axis=1)
+    side = np.einsum("ij,ij->i", c - foot, n) >= 0
+    if len(reflex):
+        side |= cKDTree(reflex).query(foot)[0] <= near
+    order = np.lexsort((got, rows))
+    lead = order[np.r_[True, rows[order][1:] != rows[order][:-1]]]
+    r_u, g_u = rows[lead], got[lead]
+    better = g_u < best[r_u]
+    best[r_u[better]] = g_u[better]
+    inside[r_u[better]] = side[lead[better]]
+
+
+def disk_excess(boundary: Boundary, branches: Sequence[Branch]) -> tuple[float, FloatArray]:
+    """How far the worst disk of the branches' splines, evaluated at the quarter points
+    between their knots, reaches out of the face (radius minus distance inside it,
+    radius plus distance outside it), and that disk's centre."""
+    q, r = [], []
+    for b in branches:
+        knots = np.unique(b.spline.knots)
+        if len(knots) < 3:  # one polynomial piece (a straight branch, a short one): no
+            continue  # samples between its ends to swing at
+        u = np.concatenate([knots[:-1] + f * np.diff(knots) for f in (0.25, 0.5, 0.75)])
+        v = b.spline(u)
+        q.append(v[:, :2])
+        r.append(v[:, 2])
+    if not q:
+        return 0.0, np.zeros(2)
+    qq, rr = np.vstack(q), np.concatenate(r)
+    ok = np.all(np.isfinite(qq), axis=1) & np.isfinite(rr)
+    qq, rr = qq[ok], rr[ok]
+    if not len(qq):
+        return 0.0, np.zeros(2)
+    d, inside = _nearest(boundary, qq)
+    excess = np.where(inside, rr - d, rr + d)
+    worst = int(np.argmax(excess))
+    return float(excess[worst]), qq[worst]
