@@ -30,7 +30,7 @@ __all__ = ["disk_excess"]
 FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
-_NEAREST = 4  # boundary samples refined per point
+_NEAREST = 3  # boundary samples refined per point
 
 
 def _samples(boundary: Boundary) -> tuple[FloatArray, NDArray[np.int64], FloatArray]:
@@ -146,7 +146,7 @@ def _update(
 
 
 def disk_excess(boundary: Boundary, branches: Sequence[Branch]) -> tuple[float, FloatArray]:
-    """How far the worst disk of the branches' splines, evaluated at the quarter points
+    """How far the worst disk of the branches' splines, evaluated at the thirds
     between their knots, reaches out of the face (radius minus distance inside it,
     radius plus distance outside it), and that disk's centre."""
     q, r = [], []
@@ -154,7 +154,7 @@ def disk_excess(boundary: Boundary, branches: Sequence[Branch]) -> tuple[float, 
         knots = np.unique(b.spline.knots)
         if len(knots) < 3:  # one polynomial piece (a straight branch, a short one): no
             continue  # samples between its ends to swing at
-        u = np.concatenate([knots[:-1] + f * np.diff(knots) for f in (0.25, 0.5, 0.75)])
+        u = np.concatenate([knots[:-1] + f * np.diff(knots) for f in (1 / 3, 2 / 3)])
         v = b.spline(u)
         q.append(v[:, :2])
         r.append(v[:, 2])
