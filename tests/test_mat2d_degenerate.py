@@ -166,6 +166,38 @@ def test_the_disk_check_measures_how_far_a_branch_reaches_out_of_the_face() -> N
     assert excess >= 0.003 * mat.boundary.diag
 
 
+@pytest.mark.parametrize("gap", [0.0, 3e-5])
+def test_the_disk_check_reads_a_notch_tips_fan_as_inside(gap: float) -> None:
+    """Points nearest a reflex corner (a notch's tip, turning by -3.08 rad) lie inside the
+    face although the edges' own normals at their ends point away from them. The first
+    disk check told the corner by distance (1e-5 diag): with the edges meeting the tip
+    ``3e-5`` apart (a joint gap the boundary accepts), the medial point (0.55, 0.154) on
+    the parabola between the tip and the bottom edge read outside, 0.31 out of the face,
+    and a right answer would have been refused. The corner is now told by topology."""
+    from medialcad.mat2d.boundary import EdgePiece, build_boundary
+    from medialcad.mat2d.curves import LineCurve
+    from medialcad.mat2d.selfcheck import _nearest
+
+    pts = [(0, 0), (1, 0), (1, 1), (0.52, 1), (0.5, 0.3), (0.48, 1), (0, 1)]
+    pieces = []
+    for i in range(len(pts)):
+        a = np.array(pts[i], dtype=float)
+        b = np.array(pts[(i + 1) % len(pts)], dtype=float)
+        if i == 3:  # the edge into the tip stops short of it, the next starts past it
+            b = b + np.array([-gap, 0.0])
+        if i == 4:
+            a = a + np.array([gap, 0.0])
+        d = b - a
+        length = float(np.linalg.norm(d))
+        pieces.append(EdgePiece(LineCurve(a, d / length), 0.0, length, i))
+    boundary = build_boundary([pieces], gap_tol=1e-3, angle_tol=1e-6)
+    x = np.array([0.55, 0.52, 0.6])
+    r = ((x - 0.5) ** 2 + 0.09) / 0.6  # equidistant from the tip and the bottom edge
+    dist, inside = _nearest(boundary, np.column_stack([x, r]))
+    assert inside.all()
+    assert np.abs(r - dist).max() <= gap + 1e-12
+
+
 def test_thin_wall_between_circles_with_offset_seams() -> None:
     outer = cq.Wire.makeCircle(10.02, cq.Vector(0, 0, 0), cq.Vector(0, 0, 1))
     inner = cq.Wire.makeCircle(10.0, cq.Vector(0, 0, 0), cq.Vector(0, 0, 1)).rotate(

@@ -66,10 +66,9 @@ def _nearest(boundary: Boundary, q: FloatArray) -> tuple[FloatArray, BoolArray]:
     inside = np.ones(len(q), dtype=bool)
     vertex = np.nonzero(np.isnan(pars[j[:, 0]]))[0]  # the nearest sample: a reflex vertex
     best[vertex] = d[vertex, 0]
-    # a foot on a reflex corner: every point nearest to it lies inside (its edges' own
-    # normals, at their ends, read a point in the corner's fan as outside)
-    reflex = np.array([c.point for c in boundary.corners if c.turn < 0]).reshape(-1, 2)
-    near = 1e-5 * boundary.diag  # (joints meet within their gap, ~1e-6)
+    # a foot at an edge's end beside a reflex corner: every point nearest to it lies
+    # inside (the edge's own normal there reads a point in the corner's fan as outside)
+    reflex = _reflex_ends(boundary)
     rows = np.repeat(np.arange(len(q)), k)
     cand = j.ravel()
     el = els[cand]
@@ -79,8 +78,10 @@ def _nearest(boundary: Boundary, q: FloatArray) -> tuple[FloatArray, BoolArray]:
     # lines, all at once: the nearest point in closed form
     sel = np.nonzero(lines[el])[0]
     if len(sel):
-        foot, n = _line_feet(boundary, el[sel], q[rows[sel]])
-        _update(best, inside, rows[sel], q[rows[sel]], foot, n, reflex, near)
+        foot, n, t = _line_feet(boundary, el[sel], q[rows[sel]])
+        _update(
+            best, inside, rows[sel], q[rows[sel]], foot, n, _at_reflex(boundary, reflex, el[sel], t)
+        )
     # other curves, element by element: Newton from the sample
     order = np.argsort(el, kind="stable")
     order = order[~lines[el[order]] & ~np.isnan(pars[cand[order]])]
@@ -99,15 +100,36 @@ def _nearest(boundary: Boundary, q: FloatArray) -> tuple[FloatArray, BoolArray]:
             hh = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", p - c, d2)
             t = np.clip(t - np.where(hh > 0, g / np.where(hh > 0, hh, 1.0), 0.0), lo, hi)
         foot, n, _ = boundary.frame_at(e, t)
-        _update(best, inside, rows[idx], c, foot, n, reflex, near)
+        _update(best, inside, rows[idx], c, foot, n, _at_reflex(boundary, reflex, el[idx], t))
     return best, inside
+
+
+def _reflex_ends(boundary: Boundary) -> NDArray[np.bool_]:
+    """``(elements, 2)``: whether an edge element's start (``t0``) and end (``t1``) meet a
+    reflex corner (a vertex element next to it in its loop)."""
+    out = np.zeros((len(boundary.elements), 2), dtype=bool)
+    for loop in range(len(boundary.loop_lengths)):
+        ring = [e for e in boundary.elements if e.loop == loop]
+        for k, e in enumerate(ring):
+            out[e.index] = (ring[k - 1].is_vertex, ring[(k + 1) % len(ring)].is_vertex)
+    return out
+
+
+def _at_reflex(
+    boundary: Boundary, reflex: NDArray[np.bool_], el: NDArray[np.int64], t: FloatArray
+) -> NDArray[np.bool_]:
+    """Whether each foot (parameter ``t`` on edge element ``el``) is an end of its edge
+    that meets a reflex corner (Newton and the closed form clamp exactly onto it)."""
+    t0 = np.array([e.piece.t0 if e.piece is not None else np.nan for e in boundary.elements])
+    t1 = np.array([e.piece.t1 if e.piece is not None else np.nan for e in boundary.elements])
+    return np.asarray((reflex[el, 0] & (t == t0[el])) | (reflex[el, 1] & (t == t1[el])))
 
 
 def _line_feet(
     boundary: Boundary, el: NDArray[np.int64], c: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """Nearest points of the line elements ``el`` to the points ``c``, and the elements'
-    inward normals there."""
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Nearest points of the line elements ``el`` to the points ``c``, the elements'
+    inward normals there and the points' parameters."""
     m = len(boundary.elements)
     o, dvec, span, sense = np.zeros((m, 2)), np.ones((m, 2)), np.zeros((m, 2)), np.ones(m)
     for e in boundary.elements:
@@ -117,9 +139,10 @@ def _line_feet(
             sense[e.index] = 1.0 if e.piece.t1 > e.piece.t0 else -1.0
     oo, dd = o[el], dvec[el]
     t = np.einsum("ij,ij->i", c - oo, dd) / np.einsum("ij,ij->i", dd, dd)
-    foot = oo + np.clip(t, span[el, 0], span[el, 1])[:, None] * dd
+    t = np.clip(t, span[el, 0], span[el, 1])
+    foot = oo + t[:, None] * dd
     tan = sense[el, None] * dd / np.linalg.norm(dd, axis=1)[:, None]
-    return foot, np.column_stack([-tan[:, 1], tan[:, 0]])
+    return foot, np.column_stack([-tan[:, 1], tan[:, 0]]), t
 
 
 def _update(
@@ -129,14 +152,11 @@ def _update(
     c: FloatArray,
     foot: FloatArray,
     n: FloatArray,
-    reflex: FloatArray,
-    near: float,
+    at_reflex: NDArray[np.bool_],
 ) -> None:
     """Keep, per point, the nearest of the feet found (rows may repeat)."""
     got = np.linalg.norm(foot - c, axis=1)
-    side = np.einsum("ij,ij->i", c - foot, n) >= 0
-    if len(reflex):
-        side |= cKDTree(reflex).query(foot)[0] <= near
+    side = (np.einsum("ij,ij->i", c - foot, n) >= 0) | at_reflex
     order = np.lexsort((got, rows))
     lead = order[np.r_[True, rows[order][1:] != rows[order][:-1]]]
     r_u, g_u = rows[lead], got[lead]

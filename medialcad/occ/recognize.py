@@ -93,7 +93,7 @@ class _FaceData:
     axis: tuple[FloatArray, FloatArray] | None  # (point, unit direction)
     area: float
     centroid: FloatArray
-    offset: bool = False  # an offset surface (its volume needs a NURBS copy)
+    offset: bool = False  # an offset surface of no canonical form (volume: a NURBS copy)
 
 
 _KINDS = {
@@ -125,11 +125,14 @@ def _offset_reference(face: TopoDS_Face) -> GeomAdaptor_Surface | None:
         s = s.BasisSurface()
     if not isinstance(s, Geom_OffsetSurface):
         return None
-    with occ_guard("reading an offset surface"):
-        same = s.Surface()
-        if same is not None:  # (a null handle reads None)
-            return GeomAdaptor_Surface(same)
-        basis = GeomAdaptor_Surface(s.BasisSurface())
+    try:
+        with occ_guard("reading an offset surface"):
+            same = s.Surface()
+            if same is not None:  # (a null handle reads None)
+                return GeomAdaptor_Surface(same)
+            basis = GeomAdaptor_Surface(s.BasisSurface())
+    except OCCError:  # read as a free-form face
+        return None
     if basis.GetType() in (GeomAbs_SurfaceOfExtrusion, GeomAbs_SurfaceOfRevolution):
         return basis
     return None
@@ -147,6 +150,8 @@ def _face_data(index: int, face: TopoDS_Face, flat_tol: float) -> _FaceData:
         found = _offset_reference(face)
         if found is not None:
             ref, stype = found, found.GetType()
+            # (a canonical equivalent integrates as itself; an offset swept surface not)
+            offset = stype in (GeomAbs_SurfaceOfExtrusion, GeomAbs_SurfaceOfRevolution)
     kind = _KINDS.get(stype, "free")
     axis: tuple[FloatArray, FloatArray] | None = None
     fitted = False
@@ -566,7 +571,11 @@ def _volume(shape: TopoDS_Shape, swept_faces: bool = False) -> float:
     B-spline (4% to 10% off on the periodic-profile fixtures), or offset surfaces (2% off
     on an offset blob prism): integrate a NURBS copy."""
     if swept_faces:
-        shape = BRepBuilderAPI_NurbsConvert(shape, True).Shape()
+        try:
+            with occ_guard("converting the solid to NURBS for its volume"):
+                shape = BRepBuilderAPI_NurbsConvert(shape, True).Shape()
+        except OCCError:  # (an approximation OCC cannot make: its own integration)
+            log.info("volume integrated without a NURBS copy: the conversion failed")
     props = GProp_GProps()
     BRepGProp.VolumeProperties_s(shape, props, 1e-9, False)
     return abs(float(props.Mass()))
