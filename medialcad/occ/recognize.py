@@ -571,11 +571,7 @@ def _volume(shape: TopoDS_Shape, swept_faces: bool = False) -> float:
     B-spline (4% to 10% off on the periodic-profile fixtures), or offset surfaces (2% off
     on an offset blob prism): integrate a NURBS copy."""
     if swept_faces:
-        try:
-            with occ_guard("converting the solid to NURBS for its volume"):
-                shape = BRepBuilderAPI_NurbsConvert(shape, True).Shape()
-        except OCCError:  # (an approximation OCC cannot make: its own integration)
-            log.info("volume integrated without a NURBS copy: the conversion failed")
+        shape = BRepBuilderAPI_NurbsConvert(shape, True).Shape()
     props = GProp_GProps()
     BRepGProp.VolumeProperties_s(shape, props, 1e-9, False)
     return abs(float(props.Mass()))
