@@ -16,6 +16,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -68,7 +69,7 @@ def _nearest(boundary: Boundary, q: FloatArray) -> tuple[FloatArray, BoolArray]:
     best[vertex] = d[vertex, 0]
     # a foot at an edge's end beside a reflex corner: every point nearest to it lies
     # inside (the edge's own normal there reads a point in the corner's fan as outside)
-    reflex = _reflex_ends(boundary)
+    reflex = _ReflexEnds.of(boundary)
     rows = np.repeat(np.arange(len(q)), k)
     cand = j.ravel()
     el = els[cand]
@@ -79,9 +80,7 @@ def _nearest(boundary: Boundary, q: FloatArray) -> tuple[FloatArray, BoolArray]:
     sel = np.nonzero(lines[el])[0]
     if len(sel):
         foot, n, t = _line_feet(boundary, el[sel], q[rows[sel]])
-        _update(
-            best, inside, rows[sel], q[rows[sel]], foot, n, _at_reflex(boundary, reflex, el[sel], t)
-        )
+        _update(best, inside, rows[sel], q[rows[sel]], foot, n, reflex.at(el[sel], t))
     # other curves, element by element: Newton from the sample
     order = np.argsort(el, kind="stable")
     order = order[~lines[el[order]] & ~np.isnan(pars[cand[order]])]
@@ -100,29 +99,37 @@ def _nearest(boundary: Boundary, q: FloatArray) -> tuple[FloatArray, BoolArray]:
             hh = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", p - c, d2)
             t = np.clip(t - np.where(hh > 0, g / np.where(hh > 0, hh, 1.0), 0.0), lo, hi)
         foot, n, _ = boundary.frame_at(e, t)
-        _update(best, inside, rows[idx], c, foot, n, _at_reflex(boundary, reflex, el[idx], t))
+        _update(best, inside, rows[idx], c, foot, n, reflex.at(el[idx], t))
     return best, inside
 
 
-def _reflex_ends(boundary: Boundary) -> NDArray[np.bool_]:
-    """``(elements, 2)``: whether an edge element's start (``t0``) and end (``t1``) meet a
-    reflex corner (a vertex element next to it in its loop)."""
-    out = np.zeros((len(boundary.elements), 2), dtype=bool)
-    for loop in range(len(boundary.loop_lengths)):
-        ring = [e for e in boundary.elements if e.loop == loop]
-        for k, e in enumerate(ring):
-            out[e.index] = (ring[k - 1].is_vertex, ring[(k + 1) % len(ring)].is_vertex)
-    return out
+@dataclass(frozen=True)
+class _ReflexEnds:
+    """Which ends of the edge elements meet a reflex corner (a vertex element next to
+    them in their loop), with the elements' end parameters."""
 
+    ends: BoolArray  # (elements, 2): at t0, at t1
+    t0: FloatArray
+    t1: FloatArray
 
-def _at_reflex(
-    boundary: Boundary, reflex: NDArray[np.bool_], el: NDArray[np.int64], t: FloatArray
-) -> NDArray[np.bool_]:
-    """Whether each foot (parameter ``t`` on edge element ``el``) is an end of its edge
-    that meets a reflex corner (Newton and the closed form clamp exactly onto it)."""
-    t0 = np.array([e.piece.t0 if e.piece is not None else np.nan for e in boundary.elements])
-    t1 = np.array([e.piece.t1 if e.piece is not None else np.nan for e in boundary.elements])
-    return np.asarray((reflex[el, 0] & (t == t0[el])) | (reflex[el, 1] & (t == t1[el])))
+    @classmethod
+    def of(cls, boundary: Boundary) -> _ReflexEnds:
+        ends = np.zeros((len(boundary.elements), 2), dtype=bool)
+        for loop in range(len(boundary.loop_lengths)):
+            ring = [e for e in boundary.elements if e.loop == loop]
+            for k, e in enumerate(ring):
+                ends[e.index] = (ring[k - 1].is_vertex, ring[(k + 1) % len(ring)].is_vertex)
+        t0 = np.array([e.piece.t0 if e.piece is not None else np.nan for e in boundary.elements])
+        t1 = np.array([e.piece.t1 if e.piece is not None else np.nan for e in boundary.elements])
+        return cls(ends, t0, t1)
+
+    def at(self, el: NDArray[np.int64], t: FloatArray) -> BoolArray:
+        """Whether each foot (parameter ``t`` on edge element ``el``) is an end of its
+        edge that meets a reflex corner (Newton and the closed form clamp exactly onto
+        it)."""
+        return np.asarray(
+            (self.ends[el, 0] & (t == self.t0[el])) | (self.ends[el, 1] & (t == self.t1[el]))
+        )
 
 
 def _line_feet(

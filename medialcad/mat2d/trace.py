@@ -1306,7 +1306,7 @@ _DISK_EXCESS = 3.0
 def _check_disks(boundary: Boundary, graph: MedialGraph, tol: float) -> None:
     """Every branch's disks lie in the face (:mod:`medialcad.mat2d.selfcheck`). A branch
     fitted through a wrong sample swings between its samples: a spoke of a nearly flat
-    convex corner at a closed spline's seam went 645 tol out of the face and passed the
+    convex corner at a closed spline's seam went 944 tol out of the face and passed the
     topology check. An error, not a wrong answer."""
     excess, at = disk_excess(boundary, graph.branches)
     if excess > _DISK_EXCESS * tol:

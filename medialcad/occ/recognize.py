@@ -115,11 +115,12 @@ def _unit(v: FloatArray) -> FloatArray:
     return np.asarray(v / np.linalg.norm(v))
 
 
-def _offset_reference(face: TopoDS_Face) -> GeomAdaptor_Surface | None:
-    """What an offset surface is read as: OCC's canonical equivalent (the offset of a plane,
-    cylinder, cone, sphere or torus is one of the same kind), else the surface it is
-    offset from where that sweeps (the offset of a surface of linear extrusion or of
-    revolution sweeps the same way about the same axis); ``None`` for other offsets."""
+def _offset_reference(face: TopoDS_Face) -> tuple[GeomAdaptor_Surface, bool] | None:
+    """What an offset surface is read as, and whether that is the offset itself: OCC's
+    canonical equivalent (the offset of a plane, cylinder, cone, sphere or torus is one
+    of the same kind; ``True``), else the surface it is offset from where that sweeps
+    (the offset of a surface of linear extrusion or of revolution sweeps the same way
+    about the same axis; ``False``); ``None`` for other offsets."""
     s = BRep_Tool.Surface_s(face)
     while isinstance(s, Geom_RectangularTrimmedSurface):
         s = s.BasisSurface()
@@ -129,12 +130,12 @@ def _offset_reference(face: TopoDS_Face) -> GeomAdaptor_Surface | None:
         with occ_guard("reading an offset surface"):
             same = s.Surface()
             if same is not None:  # (a null handle reads None)
-                return GeomAdaptor_Surface(same)
+                return GeomAdaptor_Surface(same), True
             basis = GeomAdaptor_Surface(s.BasisSurface())
     except OCCError:  # read as a free-form face
         return None
     if basis.GetType() in (GeomAbs_SurfaceOfExtrusion, GeomAbs_SurfaceOfRevolution):
-        return basis
+        return basis, False
     return None
 
 
@@ -149,9 +150,10 @@ def _face_data(index: int, face: TopoDS_Face, flat_tol: float) -> _FaceData:
     if offset:
         found = _offset_reference(face)
         if found is not None:
-            ref, stype = found, found.GetType()
+            ref, canonical = found
+            stype = ref.GetType()
             # (a canonical equivalent integrates as itself; an offset swept surface not)
-            offset = stype in (GeomAbs_SurfaceOfExtrusion, GeomAbs_SurfaceOfRevolution)
+            offset = not canonical
     kind = _KINDS.get(stype, "free")
     axis: tuple[FloatArray, FloatArray] | None = None
     fitted = False
