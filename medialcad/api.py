@@ -134,7 +134,7 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
     if tol_abs is None:
         tol_abs = 1e-5 * pf.diag
     try:
-        boundary = build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=ANGLE_TOL)
+        boundary = build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=ANGLE_TOL, tol=tol_abs)
         _check_simple(boundary)
         _check_resolvable(boundary, tol_abs, pf.frame)
         settings = TraceSettings(tol=tol_abs, spacing=pf.diag / 200.0)

@@ -775,8 +775,11 @@ class FaceBoundary:
                 continue
             if abs(di - dj) > self.eta or self.nearest(c)[0] < di - self.eta:
                 continue
-            # two distinct feet (on one edge both projections may slide to the same one)
-            if i == j and float(np.linalg.norm(qi - qj)) < 100.0 * self.eta:
+            # two distinct feet (on one edge both projections may slide to the same one;
+            # on either side of a closed edge's seam they are distinct however close)
+            c_i = self.curves[i]
+            across = abs(ti - tj) > 0.5 * (c_i.LastParameter() - c_i.FirstParameter())
+            if i == j and float(np.linalg.norm(qi - qj)) < 100.0 * self.eta and not across:
                 continue
             best = min(best, float(np.linalg.norm(np.asarray(p) - c)))
         return best
@@ -795,13 +798,25 @@ class FaceBoundary:
         # curvature maximum between them): seeds a fraction of the cell to either side
         cell = float(np.median(np.abs(np.diff(par))))
         near = [(i, t + s * f * cell) for f in (0.5, 0.2, 0.05) for s in (-1.0, 1.0)]
+        limit = 1.5 * float(dist.min()) + self._sh
+        if self._closed(i) and dist[0] <= limit and dist[0] <= dist[1] and dist[-1] <= dist[-2]:
+            # a closed edge's seam nearest p (a corner there: its spoke's feet lie on
+            # either side of it): the other side's end seeds the second foot
+            c = self.curves[i]
+            t0, t1 = c.FirstParameter(), c.LastParameter()
+            near.append((i, t0 + 0.05 * cell if t - t0 > t1 - t else t1 - 0.05 * cell))
         inner = (dist[1:-1] <= dist[:-2]) & (dist[1:-1] <= dist[2:])
         minima = np.flatnonzero(inner) + 1
         if len(minima) < 2:
             return near
         own = minima[int(np.argmin(np.abs(par[minima] - t)))]
-        limit = 1.5 * float(dist.min()) + self._sh
         return near + [(i, float(par[k])) for k in minima if k != own and dist[k] <= limit]
+
+    def _closed(self, i: int) -> bool:
+        """Whether edge ``i`` is closed on itself (its seam a point of the loop)."""
+        c = self.curves[i]
+        a, b = _xyz(c.Value(c.FirstParameter())), _xyz(c.Value(c.LastParameter()))
+        return float(np.linalg.norm(a - b)) <= self.eta
 
     def _inside_range(self, i: int, t: float) -> bool:
         c = self.curves[i]

@@ -426,15 +426,31 @@ class SolidBoundary:
         """An upper bound of ``dist(x, dS)`` from the bracketing KD-tree: ``(distance, point,
         face, uv, distance of the nearest node)``, the better of the nearest node and a local
         projection on its face seeded at it."""
-        dn, jn = self._tree.query(x)
-        d, foot = float(dn), self._nodes[jn].copy()
+        dk, jk = self._tree.query(x, k=min(8, len(self._nodes)))
+        dk, jk = np.atleast_1d(dk), np.atleast_1d(jk)
+        dn, jn = float(dk[0]), int(jk[0])
+        d, foot = dn, self._nodes[jn].copy()
         face, uv = int(self._node_face[jn]), self._node_uv[jn].copy()
         if not np.isfinite(uv).all():
-            return d, foot, None, None, float(dn)
-        dp, qp, uvp = self._project(x, face, uv)
-        if dp < d:
-            d, foot, uv = dp, qp, uvp
-        return d, foot, face, uv, float(dn)
+            return d, foot, None, None, dn
+        best_face, best_uv = face, uv
+        # projected on the nearest node's face, and on each other face with a node
+        # nearly as near (beside an edge the nearest node may be the other face's: the
+        # cap's, where the wall's minimum is a third nearer and BRepExtrema misses it)
+        seen: set[int] = set()
+        for dj, j in zip(dk, jk, strict=True):
+            f_j = int(self._node_face[j])
+            if (
+                f_j in seen
+                or (f_j != face and dj > 1.5 * dn)
+                or not np.isfinite(self._node_uv[j]).all()
+            ):
+                continue
+            seen.add(f_j)
+            dp, qp, uvp = self._project(x, f_j, self._node_uv[j])
+            if dp < d:
+                d, foot, best_face, best_uv = dp, qp, f_j, uvp
+        return d, foot, best_face, best_uv, dn
 
     def _build_extrema(self) -> None:
         # the defaults of BRepExtrema_DistShapeShape: the tree algorithm is ~2x faster but
@@ -730,6 +746,9 @@ class SolidBoundary:
             np.maximum(0.0, np.maximum(self._fbox[:, 0] - x0, x0 - self._fbox[:, 1])), axis=1
         )
         cands = [(face, gp_Pnt2d(float(uv[0]), float(uv[1])))]
+        across = self._across_seam(face, uv)
+        if across is not None:  # a corner at the face's own seam: feet either side of it
+            cands.append((face, across))
         for j in np.nonzero(lb <= 1.5 * d0)[0]:
             j = int(j)
             if j == face:
@@ -747,17 +766,43 @@ class SolidBoundary:
                 best = min(best, float(np.linalg.norm(x0 - got)))
         return best
 
+    def _across_seam(self, face: int, uv: ArrayLike) -> Any:
+        """The point across the seam of a face closed on itself (a surface swept from a
+        closed curve written clamped: its seam may be a corner) from ``uv``, at the same
+        distance from the seam on the other side, as a ``gp_Pnt2d``; ``None`` for a face
+        not closed in u or v."""
+        u0, u1, v0, v1 = BRepTools.UVBounds_s(self.faces[face])
+        u, v = float(uv[0]), float(uv[1])
+        surf = self._surf[face]
+        for closed_u in (True, False):
+            a, b = (
+                (_xyz(surf.Value(u0, v)), _xyz(surf.Value(u1, v)))
+                if closed_u
+                else (
+                    _xyz(surf.Value(u, v0)),
+                    _xyz(surf.Value(u, v1)),
+                )
+            )
+            if float(np.linalg.norm(a - b)) > self.eta:
+                continue
+            if closed_u:
+                return gp_Pnt2d(u0 + u1 - u, v)
+            return gp_Pnt2d(u, v0 + v1 - v)
+        return None
+
     def _bisector_point(
         self, x0: FloatArray, i: int, uvi: Any, j: int, uvj: Any
     ) -> FloatArray | None:
         """The point equidistant from faces ``i`` and ``j`` reached from ``x0`` by Newton
         (``uvi``, ``uvj``: ``gp_Pnt2d`` starting feet), if it is a medial point (both feet
-        inside their faces, the ball empty)."""
-        uv = {i: uvi, j: uvj}
+        inside their faces and distinct, the ball empty). ``i == j``: the two sides of a
+        face's own seam."""
+        uv = [uvi, uvj]
+        face = [i, j]
 
         def foot(k: int, prev: Any, x: FloatArray) -> tuple[Any, FloatArray]:
-            q2 = self._sas[k].NextValueOfUV(prev, _pnt(x), 1e-12 * self.diag)
-            return q2, _xyz(self._surf[k].Value(q2.X(), q2.Y()))
+            q2 = self._sas[face[k]].NextValueOfUV(prev, _pnt(x), 1e-12 * self.diag)
+            return q2, _xyz(self._surf[face[k]].Value(q2.X(), q2.Y()))
 
         def warm(k: int) -> Callable[[FloatArray], FloatArray]:
             def near(x: FloatArray) -> FloatArray:
@@ -766,15 +811,22 @@ class SolidBoundary:
 
             return near
 
-        c, degenerate = equidistant_point(x0, warm(i), warm(j), self.eps, self.diag)
+        c, degenerate = equidistant_point(x0, warm(0), warm(1), self.eps, self.diag)
         if degenerate:
             return None
-        pi, pj = uv[i], uv[j]
-        pi, qi = foot(i, pi, c)
-        pj, qj = foot(j, pj, c)
+        pi, pj = uv
+        pi, qi = foot(0, pi, c)
+        pj, qj = foot(1, pj, c)
         di, dj = float(np.linalg.norm(c - qi)), float(np.linalg.norm(c - qj))
         if abs(di - dj) > self.eta:
             return None
+        if i == j:  # one foot either side of the seam, not both on one side
+            u0, u1, v0, v1 = BRepTools.UVBounds_s(self.faces[i])
+            mid_u, mid_v = 0.5 * (u0 + u1), 0.5 * (v0 + v1)
+            closed_u = abs(uvi.X() - uvj.X()) > abs(uvi.Y() - uvj.Y())
+            side = (lambda q: q.X() > mid_u) if closed_u else (lambda q: q.Y() > mid_v)
+            if side(pi) == side(pj):
+                return None
         for k, q2 in ((i, pi), (j, pj)):
             self._face_classifier.Perform(self.faces[k], q2, 1e-9)
             if self._face_classifier.State() != TopAbs_IN:

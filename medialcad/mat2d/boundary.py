@@ -165,13 +165,37 @@ def _piece_length(p: EdgePiece) -> float:
     return float(np.sum(np.linalg.norm(np.diff(pts, axis=0), axis=1)))
 
 
-def build_boundary(loops: list[list[EdgePiece]], gap_tol: float, angle_tol: float) -> Boundary:
+def _split_seam_corner(loop: list[EdgePiece], min_turn: float) -> list[EdgePiece]:
+    """A loop of one edge whose seam is a convex corner turning by more than ``min_turn``
+    (a closed curve written clamped, ending at an angle to its start) as two pieces of
+    that edge, halves of its parameter range: a corner joins two elements, as everywhere
+    else (traced as one element, the corner's spoke was paired across its own seam: the
+    medial axis refused or, at 1e-4 rad, wrong)."""
+    if len(loop) != 1:
+        return loop
+    (p,) = loop
+    ta, tb = _tangent(p, True), _tangent(p, False)
+    turn = float(np.arctan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb))
+    if turn <= min_turn:
+        return loop
+    tm = 0.5 * (p.t0 + p.t1)
+    return [EdgePiece(p.curve, p.t0, tm, p.edge_index), EdgePiece(p.curve, tm, p.t1, p.edge_index)]
+
+
+def build_boundary(
+    loops: list[list[EdgePiece]], gap_tol: float, angle_tol: float, tol: float | None = None
+) -> Boundary:
     """Orient the loops, classify the corners and lay out the elements.
 
     Args:
         loops: connected edge pieces of each loop (any orientation, any loop first).
         gap_tol: largest gap allowed between consecutive pieces.
         angle_tol: turning angles below this (radians) are tangent-continuous joins.
+        tol: the medial axis's tolerance. With it, a one-edge loop whose seam is a convex
+            corner is split there into two elements (:func:`_split_seam_corner`) unless
+            the corner is flat at the tolerance: turning by ``a`` with ``a diag / 2 <=
+            tol``, the feet of its spoke's disks (radius below ``diag / 2``) lie within
+            ``tol`` of it, and the corner is crossed as a smooth point of the curve.
 
     Raises:
         OpenWireError: consecutive pieces do not meet.
@@ -196,6 +220,9 @@ def build_boundary(loops: list[list[EdgePiece]], gap_tol: float, angle_tol: floa
     order = [outer] + [i for i in range(len(oriented)) if i != outer]
     oriented = [oriented[i] for i in order]
 
+    if tol is not None:
+        flat = max(angle_tol, 2.0 * tol / diag)
+        oriented = [_split_seam_corner(lp, flat) for lp in oriented]
     angle_scale = 0.05 * diag
     elements: list[Element] = []
     corners: list[Corner] = []
