@@ -1101,8 +1101,16 @@ def _merge_nodes(events: list[_Event], radius: float) -> int:
         return _find(parent, i)
 
     if len(events) > 1:
-        for i, j in cKDTree(pts).query_pairs(radius):
+        tree = cKDTree(pts)
+        for i, j in tree.query_pairs(radius):
             parent[find(i)] = find(j)
+        # one disk found from two of its feet: next to a nearly flat convex corner (turn
+        # a) the centre moves ~2/a times faster than the feet beside the corner, and the
+        # branch point where the corner's spoke ends, solved from either side, landed
+        # 6 tol apart along the spoke (1.5e-4 rad) with the same feet to 1e-7
+        for i, j in tree.query_pairs(100.0 * radius):
+            if find(i) != find(j) and _same_feet(events[i], events[j], radius):
+                parent[find(i)] = find(j)
     roots: dict[int, int] = {}
     for i, e in enumerate(events):
         e.node = roots.setdefault(find(i), len(roots))
@@ -1131,6 +1139,19 @@ def _merge_nodes(events: list[_Event], radius: float) -> int:
         e.point, e.radius = pt[k], float(r[k])
         e.spread = max(e.spread, float(spread[k]))
     return n
+
+
+def _same_feet(a: _Event, b: _Event, tol: float) -> bool:
+    """Whether two branch points touch the boundary at the same points (each foot
+    within ``tol`` of one of the other's, three feet or more each)."""
+    if a.kind is not NodeKind.BRANCH_POINT or b.kind is not NodeKind.BRANCH_POINT:
+        return False
+    if len(a.feet) < 3 or len(a.feet) != len(b.feet):
+        return False
+    fa = np.array([f[2] for f in a.feet])
+    fb = np.array([f[2] for f in b.feet])
+    gap = np.linalg.norm(fa[:, None, :] - fb[None, :, :], axis=2)
+    return bool(np.all(gap.min(axis=1) <= tol) and np.all(gap.min(axis=0) <= tol))
 
 
 @dataclass

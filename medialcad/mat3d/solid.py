@@ -13,6 +13,7 @@ from medialcad.mat3d.assemble import build_complex
 from medialcad.mat3d.extrusion import extrusion_rows
 from medialcad.mat3d.result import MedialAxis3D
 from medialcad.mat3d.segments import split_branches
+from medialcad.occ.complex import check_valid
 from medialcad.recognition import Extrusion, Revolution
 
 __all__ = ["medial_axis_of"]
@@ -49,10 +50,11 @@ def medial_axis_of(
         raise
     except (ArithmeticError, ValueError, IndexError, KeyError, TypeError, AssertionError) as err:
         raise ComputationError(f"3D medial axis failed: {type(err).__name__}: {err}") from err
-    timings["mat3d"] = time.perf_counter() - t0
     sheets, seams, skeletal, rims, junctions, comp = parts
     if not sheets and not seams and not skeletal and not junctions:
         raise UnsupportedSolidError("the medial axis of this solid came out empty")
+    check_valid(comp)
+    timings["mat3d"] = time.perf_counter() - t0
     return MedialAxis3D(
         reading.kind,
         reading,
