@@ -15,13 +15,13 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
-from medialcad.mat2d.boundary import Boundary, Element
+from medialcad.mat2d.boundary import Boundary, EdgePiece, Element
 from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
 from medialcad.mat2d.pocket import POCKET_LENGTH, golden_minima, pocket_rows
 from medialcad.mat2d.pocket import closed_period as _closed_period
@@ -112,7 +112,33 @@ def _keeper(e: Element, lo: float, hi: float) -> Callable[[FloatArray], FloatArr
     return lambda t: np.clip(t, lo, hi)
 
 
-_WRAP: dict[int, tuple[object, float | None]] = {}
+_Cached = TypeVar("_Cached")
+_WRAP: dict[int, tuple[EdgePiece, float | None]] = {}
+
+
+def _per_piece(
+    cache: dict[int, tuple[EdgePiece, _Cached]],
+    piece: EdgePiece,
+    build: Callable[[EdgePiece], _Cached],
+) -> _Cached:
+    """``build(piece)``, remembered per curve piece (keyed by identity; at most 512)."""
+    got = cache.get(id(piece))
+    if got is None or got[0] is not piece:
+        if len(cache) > 512:
+            cache.clear()
+        got = (piece, build(piece))
+        cache[id(piece)] = got
+    return got[1]
+
+
+def _closed_span(piece: EdgePiece) -> float | None:
+    """The parameter span of a piece closed on itself (its ends within 1e-7 of its
+    size), else ``None``."""
+    lo, hi = sorted((piece.t0, piece.t1))
+    pts = piece.curve.point(np.linspace(lo, hi, 9))
+    size = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
+    closed = size > 0 and float(np.linalg.norm(pts[0] - pts[-1])) <= 1e-7 * size
+    return hi - lo if closed else None
 
 
 def _wrap_span(e: Element) -> float | None:
@@ -126,18 +152,7 @@ def _wrap_span(e: Element) -> float | None:
     period = _closed_period(e)
     if period is not None:
         return period
-    piece = e.piece
-    got = _WRAP.get(id(piece))
-    if got is None or got[0] is not piece:
-        if len(_WRAP) > 512:
-            _WRAP.clear()
-        lo, hi = sorted((piece.t0, piece.t1))
-        pts = piece.curve.point(np.linspace(lo, hi, 9))
-        size = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
-        closed = size > 0 and float(np.linalg.norm(pts[0] - pts[-1])) <= 1e-7 * size
-        got = (piece, hi - lo if closed else None)
-        _WRAP[id(piece)] = got
-    return got[1]
+    return _per_piece(_WRAP, e.piece, _closed_span)
 
 
 def _joint(
@@ -322,7 +337,7 @@ def _project_params(
     return np.asarray(t)
 
 
-_DENSE: dict[int, tuple[object, FloatArray, object]] = {}
+_DENSE: dict[int, tuple[EdgePiece, tuple[FloatArray, Any]]] = {}
 
 
 def _dense_samples(e: Element) -> tuple[FloatArray, Any]:
@@ -332,17 +347,13 @@ def _dense_samples(e: Element) -> tuple[FloatArray, Any]:
     and stayed there (a local nearest point), and that side's rim crossed over."""
     from scipy.spatial import cKDTree
 
-    piece = e.piece
-    assert piece is not None
-    got = _DENSE.get(id(piece))
-    if got is None or got[0] is not piece:
-        if len(_DENSE) > 512:
-            _DENSE.clear()
+    def build(piece: EdgePiece) -> tuple[FloatArray, Any]:
         lo, hi = sorted((piece.t0, piece.t1))
         grid = np.linspace(lo, hi, 4097)
-        got = (piece, grid, cKDTree(piece.curve.point(grid)))
-        _DENSE[id(piece)] = got
-    return got[1], got[2]
+        return grid, cKDTree(piece.curve.point(grid))
+
+    assert e.piece is not None
+    return _per_piece(_DENSE, e.piece, build)
 
 
 def foot_normals(boundary: Boundary, element: int, feet: FloatArray) -> FloatArray | None:
