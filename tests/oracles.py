@@ -777,10 +777,12 @@ class FaceBoundary:
                 continue
             # two distinct feet (on one edge both projections may slide to the same one;
             # on either side of a closed edge's seam they are distinct however close)
-            c_i = self.curves[i]
-            across = abs(ti - tj) > 0.5 * (c_i.LastParameter() - c_i.FirstParameter())
-            if i == j and float(np.linalg.norm(qi - qj)) < 100.0 * self.eta and not across:
-                continue
+            if i == j and float(np.linalg.norm(qi - qj)) < 100.0 * self.eta:
+                c_i = self.curves[i]
+                span = c_i.LastParameter() - c_i.FirstParameter()
+                # (a smooth seam's other side lands on the extension, out of range)
+                if not (self._closed(i) and abs(ti - tj) > 0.5 * span):
+                    continue
             best = min(best, float(np.linalg.norm(np.asarray(p) - c)))
         return best
 

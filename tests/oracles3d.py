@@ -795,8 +795,8 @@ class SolidBoundary:
     ) -> FloatArray | None:
         """The point equidistant from faces ``i`` and ``j`` reached from ``x0`` by Newton
         (``uvi``, ``uvj``: ``gp_Pnt2d`` starting feet), if it is a medial point (both feet
-        inside their faces and distinct, the ball empty). ``i == j``: the two sides of a
-        face's own seam."""
+        inside their faces, the ball empty). ``i == j``: the two sides of a face's own
+        seam (a foot near each end of its parameter range)."""
         uv = [uvi, uvj]
         face = [i, j]
 
@@ -820,12 +820,14 @@ class SolidBoundary:
         di, dj = float(np.linalg.norm(c - qi)), float(np.linalg.norm(c - qj))
         if abs(di - dj) > self.eta:
             return None
-        if i == j:  # one foot either side of the seam, not both on one side
+        if i == j:  # one foot at each end of the seam's parameter range, a quarter of
+            # the range from it at most: the two sides of the seam, not one foot twice
             u0, u1, v0, v1 = BRepTools.UVBounds_s(self.faces[i])
-            mid_u, mid_v = 0.5 * (u0 + u1), 0.5 * (v0 + v1)
             closed_u = abs(uvi.X() - uvj.X()) > abs(uvi.Y() - uvj.Y())
-            side = (lambda q: q.X() > mid_u) if closed_u else (lambda q: q.Y() > mid_v)
-            if side(pi) == side(pj):
+            lo, hi = (u0, u1) if closed_u else (v0, v1)
+            a, b = (pi.X(), pj.X()) if closed_u else (pi.Y(), pj.Y())
+            quarter = 0.25 * (hi - lo)
+            if not (min(a, b) < lo + quarter and max(a, b) > hi - quarter):
                 return None
         for k, q2 in ((i, pi), (j, pj)):
             self._face_classifier.Perform(self.faces[k], q2, 1e-9)

@@ -139,7 +139,7 @@ def test_a_corner_at_a_closed_splines_seam_is_answered_and_passes_the_oracles(
     face = F.clamped_closed_blob(kink)
     mat = medialcad.medial_axis_2d(face)
     assert cycle_rank(mat) == (1, 0)
-    if kink < -5e-5:  # the corner's spoke: a branch ending at the corner with radius 0
+    if kink <= -5e-5:  # the corner's spoke: a branch ending at the corner with radius 0
         corner = np.array([0.6274, 0.0, 0.0])
         ends = [b.spline(np.array([b.spline.knots[k]]))[0] for b in mat.branches for k in (0, -1)]
         assert any(
@@ -147,6 +147,22 @@ def test_a_corner_at_a_closed_splines_seam_is_answered_and_passes_the_oracles(
             and np.linalg.norm(mat.graph.frame.to_3d(e[None, :2])[0] - corner) < mat.tol
             for e in ends
         )
+    _check_oracles(face, mat)
+
+
+@pytest.mark.parametrize("kink", [0.1, 1e-3, -1e-3])
+def test_a_hole_written_as_one_clamped_spline_with_a_corner_at_its_seam(kink: float) -> None:
+    """The same blob as a hole in a rectangle: its seam corner is convex for the face
+    where it is reflex for the blob (``kink > 0``), and the hole's loop runs clockwise.
+    Answered with one cycle round the hole, passing the oracles."""
+    from tests import faces as F
+
+    blob = cq.Face(F.clamped_closed_blob(kink))
+    corners = [(-2.0, -2.0), (2.5, -2.0), (2.5, 2.0), (-2.0, 2.0)]
+    outer = cq.Wire.makePolygon([cq.Vector(x, y, 0.0) for x, y in corners], close=True)
+    face = cq.Face.makeFromWires(outer, [blob.outerWire()]).wrapped
+    mat = medialcad.medial_axis_2d(face)
+    assert cycle_rank(mat) == (1, 1)
     _check_oracles(face, mat)
 
 

@@ -58,7 +58,9 @@ class BoundaryElement:
     index: int
     kind: ElementKind
     loop: int
-    edge_index: int  # index of the OCC edge in face order; for a vertex: the edge it ends
+    # index of the OCC edge in face order (one edge may be two elements: a closed curve
+    # split at a convex seam corner); for a vertex: the edge it ends
+    edge_index: int
     point_2d: FloatArray | None = None  # reflex vertices only
 
 

@@ -1094,6 +1094,9 @@ def _find(parent: list[int], i: int) -> int:
 
 
 def _merge_nodes(events: list[_Event], radius: float) -> int:
+    """Number the events' nodes: events within ``radius`` of each other, or branch
+    points touching the boundary at the same points (:func:`_same_feet`, up to 100
+    ``radius`` apart), are one node, at their mean point and radius. Returns the count."""
     pts = np.array([e.point for e in events]) if events else np.zeros((0, 2))
     parent = list(range(len(events)))
 
@@ -1107,7 +1110,8 @@ def _merge_nodes(events: list[_Event], radius: float) -> int:
         # one disk found from two of its feet: next to a nearly flat convex corner (turn
         # a) the centre moves ~2/a times faster than the feet beside the corner, and the
         # branch point where the corner's spoke ends, solved from either side, landed
-        # 6 tol apart along the spoke (1.5e-4 rad) with the same feet to 1e-7
+        # 6 tol apart along the spoke (1.5e-4 rad) with the same feet to 1e-7; at 5e-5
+        # rad more than 10 tol apart (the node is their mean: an open accuracy point)
         for i, j in tree.query_pairs(100.0 * radius):
             if find(i) != find(j) and _same_feet(events[i], events[j], radius):
                 parent[find(i)] = find(j)
@@ -1141,9 +1145,9 @@ def _merge_nodes(events: list[_Event], radius: float) -> int:
     return n
 
 
-def _same_feet(a: _Event, b: _Event, tol: float) -> bool:
+def _same_feet(a: _Event, b: _Event, radius: float) -> bool:
     """Whether two branch points touch the boundary at the same points (each foot
-    within ``tol`` of one of the other's, three feet or more each)."""
+    within ``radius`` of one of the other's, three feet or more each)."""
     if a.kind is not NodeKind.BRANCH_POINT or b.kind is not NodeKind.BRANCH_POINT:
         return False
     if len(a.feet) < 3 or len(a.feet) != len(b.feet):
@@ -1151,7 +1155,7 @@ def _same_feet(a: _Event, b: _Event, tol: float) -> bool:
     fa = np.array([f[2] for f in a.feet])
     fb = np.array([f[2] for f in b.feet])
     gap = np.linalg.norm(fa[:, None, :] - fb[None, :, :], axis=2)
-    return bool(np.all(gap.min(axis=1) <= tol) and np.all(gap.min(axis=0) <= tol))
+    return bool(np.all(gap.min(axis=1) <= radius) and np.all(gap.min(axis=0) <= radius))
 
 
 @dataclass

@@ -34,7 +34,8 @@ from OCP.Geom2d import Geom2d_Line
 from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pln, gp_Pnt, gp_Pnt2d
 from OCP.TColgp import TColgp_Array1OfPnt, TColgp_Array2OfPnt
 from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
-from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
+from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED
+from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
@@ -394,11 +395,20 @@ def check_valid(comp: TopoDS_Compound) -> None:
     (sheets of a nearly flat convex corner's spoke narrower than the tolerance) is an
     error, not an answer."""
     with occ_guard("checking the medial complex"):
-        valid = BRepCheck_Analyzer(comp).IsValid()
-    if not valid:
-        raise ComputationError(
-            "the medial complex fails OCC's own check (BRepCheck_Analyzer): traced wrong"
-        )
+        check = BRepCheck_Analyzer(comp)
+        if check.IsValid():
+            return
+        what = ""
+        explorer = TopExp_Explorer(comp, TopAbs_FACE)
+        while explorer.More() and not what:
+            face = explorer.Current()
+            if not check.IsValid(face):
+                status = [str(s).rsplit("_", 1)[-1] for s in check.Result(face).Status()]
+                what = f" (a sheet: {', '.join(status)})"
+            explorer.Next()
+    raise ComputationError(
+        f"the medial complex fails OCC's own check (BRepCheck_Analyzer){what}: traced wrong"
+    )
 
 
 def bspline_points(edge: TopoDS_Edge, n: int) -> FloatArray:

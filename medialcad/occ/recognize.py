@@ -117,10 +117,11 @@ def _unit(v: FloatArray) -> FloatArray:
 
 def _offset_reference(face: TopoDS_Face) -> tuple[GeomAdaptor_Surface, bool] | None:
     """What an offset surface is read as, and whether that is the offset itself: OCC's
-    canonical equivalent (the offset of a plane, cylinder, cone, sphere or torus is one
-    of the same kind; ``True``), else the surface it is offset from where that sweeps
-    (the offset of a surface of linear extrusion or of revolution sweeps the same way
-    about the same axis; ``False``); ``None`` for other offsets."""
+    own equivalent of the offset (``True``: the offset of a plane, cylinder, cone, sphere
+    or torus is one of the same kind; a zero offset is its basis), else the surface it
+    is offset from where that sweeps (``False``: the offset of a surface of linear
+    extrusion or of revolution sweeps the same way about the same axis); ``None`` for
+    other offsets."""
     s = BRep_Tool.Surface_s(face)
     while isinstance(s, Geom_RectangularTrimmedSurface):
         s = s.BasisSurface()
