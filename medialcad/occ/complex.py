@@ -391,7 +391,7 @@ class ComplexBuilder:
 
 def check_valid(comp: TopoDS_Compound) -> None:
     """Raise :class:`ComputationError` unless OCC's ``BRepCheck_Analyzer`` accepts the
-    medial complex (5 to 7 % of the MAT's time on the fixtures): a complex traced wrong
+    medial complex (2 to 10 % of the MAT's time on the fixtures): a complex traced wrong
     (sheets of a nearly flat convex corner's spoke narrower than the tolerance) is an
     error, not an answer."""
     with occ_guard("checking the medial complex"):
