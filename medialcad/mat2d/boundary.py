@@ -153,6 +153,11 @@ def _tangent(piece: EdgePiece, at_end: bool) -> FloatArray:
     return np.asarray(v / np.linalg.norm(v))
 
 
+def _turn(ta: FloatArray, tb: FloatArray) -> float:
+    """The signed angle from unit tangent ``ta`` to ``tb`` (> 0 turning left)."""
+    return float(np.arctan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb))
+
+
 def _reverse(loop: list[EdgePiece]) -> list[EdgePiece]:
     return [EdgePiece(p.curve, p.t1, p.t0, p.edge_index) for p in reversed(loop)]
 
@@ -174,9 +179,7 @@ def _split_seam_corner(loop: list[EdgePiece], min_turn: float) -> list[EdgePiece
     if len(loop) != 1:
         return loop
     (p,) = loop
-    ta, tb = _tangent(p, True), _tangent(p, False)
-    turn = float(np.arctan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb))
-    if turn <= min_turn:
+    if _turn(_tangent(p, True), _tangent(p, False)) <= min_turn:
         return loop
     tm = 0.5 * (p.t0 + p.t1)
     return [EdgePiece(p.curve, p.t0, tm, p.edge_index), EdgePiece(p.curve, tm, p.t1, p.edge_index)]
@@ -244,7 +247,7 @@ def build_boundary(
                     f"after edge {piece.edge_index}"
                 )
             ta, tb = _tangent(piece, True), _tangent(nxt, False)
-            turn = float(np.arctan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb))
+            turn = _turn(ta, tb)
             vtx = 0.5 * (end + start)
             if abs(turn) <= angle_tol:
                 continue
