@@ -253,6 +253,7 @@ class FaceBoundary:
         self.edge_tol = max(BRep_Tool.Tolerance_s(e) for e in self.edges)
         self.class_tol = max(1e-9 * self.diag, self.edge_tol)
         self.curves = [BRepAdaptor_Curve(e) for e in self.edges]
+        self._closed_edges = [self._ends_meet(c) for c in self.curves]
         #: ``(edge index, parameter)`` of the foot found by the last :meth:`nearest` (None: a vertex)
         self.last_foot: tuple[int, float] | None = None
         self.last_vertex: Any = None
@@ -816,7 +817,9 @@ class FaceBoundary:
 
     def _closed(self, i: int) -> bool:
         """Whether edge ``i`` is closed on itself (its seam a point of the loop)."""
-        c = self.curves[i]
+        return self._closed_edges[i]
+
+    def _ends_meet(self, c: Any) -> bool:
         a, b = _xyz(c.Value(c.FirstParameter())), _xyz(c.Value(c.LastParameter()))
         return float(np.linalg.norm(a - b)) <= self.eta
 

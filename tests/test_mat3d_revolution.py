@@ -49,9 +49,11 @@ from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepClass import BRepClass_FaceClassifier
+from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeRevol, BRepPrimAPI_MakeSphere
 from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Pnt2d
+from OCP.GProp import GProp_GProps
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN, TopAbs_ON, TopAbs_VERTEX
 from OCP.TopExp import TopExp
@@ -1560,6 +1562,68 @@ def _at_a_critical_angle(draw: st.DrawFn) -> tuple[Any, float, float]:
 def test_random_revolution_at_a_critical_angle(case: tuple[Any, float, float], seed: int) -> None:
     face, margin, angle = case
     _check_random(face, margin, angle, seed, "critical")
+
+
+ELLIPSE_TOUCH = (0.5, 1.5, 2.0)  # semi-axes (across, along the axis), centre's distance
+
+
+@pytest.mark.parametrize("delta", [-1e-3, -1e-4, -1e-8, -1e-12, 0.0, 1e-12, 1e-8, 1e-4])
+def test_level_touching_a_branch_at_the_critical_angle(delta: float) -> None:
+    """An ellipse whose long axis is parallel to the revolution axis: its one branch runs
+    along that axis at ``x = 2``, its radius peaks at the middle (``0.5``), so the level
+    ``r = x sin(Theta/2)`` touches the branch there at ``Theta = 2 asin(1/4)``. Revolved by
+    that angle times ``1 + delta``: below it a mid sheet (only beyond the tolerance: at
+    -1e-3 and -1e-4), at it and above none. Rounding put the roots of a level touching
+    a branch 1e-3 apart: the sliver between them gave unorientable caps and a revolved
+    sheet of area 9e-16 (fuzz seed 24545, refused by the BRepCheck). Every sheet is
+    BRepCheck-valid and wider than the tolerance; the oracles hold."""
+    a, b, x = ELLIPSE_TOUCH
+    theta = 2.0 * math.asin(a / x) * (1.0 + delta)
+    face = F.place(F.ellipse(a, b), F.Placement(np.eye(3), np.array([x, 0.0, 0.0])))
+    solid = revolve(face, theta, F.random_placement(3))
+    m, num = mat_and_numbers(solid, f"ellipse touch {delta:+.0e}", n_complete=60)
+    assert_oracles(num)
+    mids = [s for s in m.sheets if s.role == "mid"]
+    # the level's height over the branch's peak, against the tolerance
+    above = a - x * math.sin(theta / 2.0)
+    if above > m.tol:
+        assert mids, "no mid sheet where the level cuts the branch"
+    elif above <= 0.0:
+        assert not mids, f"{len(mids)} mid sheets at or above the critical angle"
+    for s in m.sheets:
+        props = GProp_GProps()
+        BRepGProp.SurfaceProperties_s(s.face, props)
+        assert props.Mass() > m.tol**2, f"{s.name} ({s.role}): a sliver of area {props.Mass():.1e}"
+        assert BRepCheck_Analyzer(s.face).IsValid(), f"{s.name} ({s.role}) fails BRepCheck"
+
+
+@pytest.mark.parametrize("eps", [1e-12, 1e-9, 1e-7])
+def test_a_level_touching_a_branch_within_the_tolerance_cuts_it_once(eps: float) -> None:
+    """The level ``r = h`` with ``h`` a hair below the ellipse's largest sampled radius
+    (its one branch peaks at 0.5 at the centre) crosses the branch twice, ``~sqrt(eps)`` apart. Unless the
+    level is within the tolerance there, the branch is three segments (a sliver between
+    the two roots); a touch is one cut, at the peak: two segments meeting at the centre."""
+    mat = medial_axis_2d(F.ellipse(0.5, 1.5))
+    assert len(mat.graph.branches) == 1
+    h = float(mat.graph.branches[0].radius.max()) - eps
+    strict = split_branches(mat.graph, mat.boundary, h, lambda c, r, fa, fb: False)
+    assert [(s.start.kind, s.end.kind) for s in strict] == [
+        ("node", "level"),
+        ("level", "level"),
+        ("level", "node"),
+    ]
+    gap = 0.5 - h  # the level's height below the peak (the samples miss the peak by 3e-6)
+    touch = split_branches(
+        mat.graph, mat.boundary, h, lambda c, r, fa, fb: abs(r - h) <= gap + 1e-9
+    )
+    assert [(s.start.kind, s.end.kind) for s in touch] == [("node", "level"), ("level", "node")]
+    first, second = touch
+    assert np.array_equal(first.centre[-1], second.centre[0])
+    assert first.radius[-1] == pytest.approx(0.5, abs=1e-9)
+    assert np.linalg.norm(first.centre[-1]) <= 1e-5
+    for seg in touch:  # every row a maximal disk, the cut's too
+        for feet in (seg.foot_a, seg.foot_b):
+            assert np.abs(np.linalg.norm(seg.centre - feet, axis=1) - seg.radius).max() <= 1e-9
 
 
 def test_critical_13_degree_revolution_carries_its_radius() -> None:

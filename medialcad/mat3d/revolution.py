@@ -41,7 +41,7 @@ from numpy.typing import NDArray
 from scipy.interpolate import make_interp_spline
 
 from medialcad.mat2d.graph import NodeKind
-from medialcad.mat3d.segments import End, Segment, split_branches
+from medialcad.mat3d.segments import End, Segment, TouchFn, split_branches
 from medialcad.recognition import Revolution
 
 __all__ = ["revolution_parts"]
@@ -135,7 +135,7 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     level = g_level if mid and mat2d.rmax > 0 else (g_axis if reading.touches_axis else None)
     if pie:
         level = g_pie
-    segments = split_branches(graph, boundary, level)
+    segments = split_branches(graph, boundary, level, _touch(cn, theta, sigma, tol))
     if pie:
         segments = [_axis_ends(s, cn, tol) for s in segments]
     if not full:
@@ -249,6 +249,26 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     )
 
 
+def _touch(cn: _Canon, theta: float, sigma: float, tol: float) -> TouchFn:
+    """Whether the level ``g = r - x sin(Theta/2)`` passes within the tolerance of a
+    row (centre, radius and feet in the face frame) that it touches: lifted as a
+    touch, one cut there, the row's caps end on ``Theta/2`` at its centre, not on the
+    level curve, ``r g / (f_x sin(Theta/2))`` off (the ruling's length past the level
+    curve), or for a dip below the level, a revolved sheet ``g / cos(Theta/2)`` wide is
+    left out. Within a tenth of ``tol`` it is a touch."""
+    cos = math.cos(min(theta, math.pi) / 2.0)
+
+    def touch(c: FloatArray, r: float, fa: FloatArray, fb: FloatArray) -> bool:
+        x, xa, xb = cn.xy(np.vstack([c, fa, fb]))[:, 0]
+        g = abs(r - x * sigma)
+        foot = min(xa, xb) * sigma
+        if foot <= 0 or cos <= 0 or x <= 10 * tol:  # (on the axis: a pie slice's axis cut)
+            return False
+        return g * max(r / foot, 1.0 / cos) <= 0.1 * tol
+
+    return touch
+
+
 def _roles(key: tuple) -> str | None:
     return {"SB": "seam", "ST": "seam", "OFF": "seam", "F0": "rim", "FL": "rim", "AXR": "rim"}.get(
         key[0]
@@ -327,7 +347,7 @@ def _angular_rows(
 
     def points(rows: FloatArray, seg: Segment) -> FloatArray:
         xy, r = cn.xy(rows[:, :2]), rows[:, 2]
-        phi0 = np.arcsin(np.clip(r / np.maximum(xy[:, 0], 1e-300), 0.0, 1.0))
+        phi0 = _start_angle(r, xy[:, 0], theta)
         phi = phi0[:, None] + v[None, :] * np.maximum(theta - 2 * phi0, 0.0)[:, None]
         out = [cn.model(np.broadcast_to(xy[:, None, :], (len(r), len(v), 2)), phi)]
         if caps is not None:
@@ -420,8 +440,7 @@ def _revolved_sheet(
     """A segment's revolved sheet; ``wide``: a pie slice wider than 180 degrees, where a
     level end is an arc (from 90 degrees to ``Theta`` - 90), a seam with the level
     curve's revolved sheets on either side, not a point."""
-    x = np.maximum(c[:, 0], 1e-300)
-    phi0 = np.arcsin(np.clip(r / x, 0.0, 1.0))
+    phi0 = _start_angle(r, c[:, 0], theta)
     _level_rows_at_half_angle(phi0, s, theta)
     span = np.maximum(theta - 2 * phi0, 0.0)
     v = np.linspace(0.0, 1.0, nv)
@@ -531,7 +550,7 @@ def _cap_grid(
                 tstar[i] = 1.0
     else:
         tstar = np.ones(n)
-        end_phi = np.arcsin(np.clip(r / np.maximum(cx, 1e-300), 0.0, 1.0))
+        end_phi = _start_angle(r, cx, theta)
         _level_rows_at_half_angle(end_phi, s, theta)
     phi = v[None, :] * end_phi[:, None]
     sn = np.sin(phi)
@@ -549,6 +568,14 @@ def _cap_grid(
         q[last, -1, :] = c[last]
     d = t * r[:, None]
     return q, phi, d
+
+
+def _start_angle(r: FloatArray, x: FloatArray, theta: float) -> FloatArray:
+    """``asin(r/x)``, where a revolved sheet's rows start (its caps' rows end), at most
+    ``Theta/2``: a row beyond the level by a rounding or at a touch (:func:`_touch`)
+    has no revolved sheet, its start and end caps meet at ``Theta/2``, not past it."""
+    phi = np.arcsin(np.clip(r / np.maximum(x, 1e-300), 0.0, 1.0))
+    return np.asarray(np.minimum(phi, 0.5 * theta))
 
 
 def _level_rows_at_half_angle(phi: FloatArray, s: Segment, theta: float) -> None:
