@@ -111,13 +111,14 @@ def _initial_samples(boundary: Boundary, spacing: float) -> tuple[IntArray, Floa
     return np.concatenate(loops).astype(np.int64), np.concatenate(ss)
 
 
-def _curvature_maxima(boundary: Boundary) -> tuple[IntArray, FloatArray]:
+def _curvature_maxima(boundary: Boundary) -> tuple[IntArray, FloatArray, FloatArray]:
     """Every local maximum of the (convex) curvature inside the free-form edges:
-    ``(loop, s)``. A grid of 257 parameters per edge, a grid of 65 across the bracket of
+    ``(loop, s, disk)``, ``disk`` the osculating disk's centre and radius. A grid of 257 parameters per edge, a grid of 65 across the bracket of
     each of its maxima, then golden-section search between the neighbours of the best.
     (A curvature jump at a joint or a seam is an end the events find themselves.)"""
     loops: list[int] = []
     out: list[float] = []
+    disks: list[FloatArray] = [np.zeros((0, 3))]
     for e in boundary.elements:
         if e.piece is None or e.piece.curve.constant_curvature is not None:
             continue
@@ -150,7 +151,26 @@ def _curvature_maxima(boundary: Boundary) -> tuple[IntArray, FloatArray]:
         best = 0.5 * (a_ + b_)
         out += boundary.s_of(e, best).tolist()
         loops += [e.loop] * len(best)
-    return np.array(loops, dtype=np.int64), np.array(out)
+        p, n, k = boundary.frame_at(e, best)
+        disks.append(np.column_stack([p + n / k[:, None], 1.0 / k]))
+    return np.array(loops, dtype=np.int64), np.array(out), np.vstack(disks)
+
+
+def _one_per_disk(loop: IntArray, disk: FloatArray, near: float) -> IntArray:
+    """Indices of the first of each cluster of maxima with the same osculating disk (centre
+    and radius within ``near``) on one loop, in order: an arc written as a NURBS curve has
+    its constant curvature's rounding for maxima (the gear wheel's, 4,267 of them), every
+    one the same disk; the medial map at one of them says whether that disk is empty."""
+    keep: list[int] = []
+    for lp in np.unique(loop):
+        idx = np.nonzero(loop == lp)[0]
+        tree = cKDTree(disk[idx])
+        taken = np.zeros(len(idx), dtype=bool)
+        for j in range(len(idx)):
+            if not taken[j]:
+                keep.append(int(idx[j]))
+                taken[tree.query_ball_point(disk[idx[j]], near)] = True
+    return np.array(sorted(keep), dtype=np.int64)
 
 
 def _near_flat_corners(
@@ -542,8 +562,11 @@ class _Tracer:
         osculating disk is empty (an end point of the axis) with no curvature-centre
         node among ``ends`` (one per centre: an arc stored as a NURBS curve has its
         constant curvature's rounding for maxima, 95 of them at one centre)."""
+        near = max(self.cfg.tol, 10 * self.cfg.eps_s)
         if self.empty_maxima is None:
-            loop, s = _curvature_maxima(self.b)
+            loop, s, disk = _curvature_maxima(self.b)
+            one = _one_per_disk(loop, disk, 1e-3 * near)
+            loop, s = loop[one], s[one]
             centre = np.zeros((0, 2))
             if len(s):
                 at_max = self.eval(loop, s)
@@ -551,7 +574,6 @@ class _Tracer:
                 loop, s, centre = loop[sel], s[sel], at_max.centre[sel]
             self.empty_maxima = (loop, s, centre)
         loop, s, centre = self.empty_maxima
-        near = max(self.cfg.tol, 10 * self.cfg.eps_s)
         miss = np.ones(len(s), dtype=bool)
         if len(ends):
             at = np.array(ends).reshape(-1, 2)
