@@ -113,9 +113,10 @@ def _initial_samples(boundary: Boundary, spacing: float) -> tuple[IntArray, Floa
 
 def _curvature_maxima(boundary: Boundary) -> tuple[IntArray, FloatArray, FloatArray]:
     """Every local maximum of the (convex) curvature inside the free-form edges:
-    ``(loop, s, disk)``, ``disk`` the osculating disk's centre and radius. A grid of 257 parameters per edge, a grid of 65 across the bracket of
-    each of its maxima, then golden-section search between the neighbours of the best.
-    (A curvature jump at a joint or a seam is an end the events find themselves.)"""
+    ``(loop, s, disk)``, ``disk`` the osculating disk's centre and radius. A grid of 257
+    parameters per edge, a grid of 65 across the bracket of each of its maxima, then
+    golden-section search between the neighbours of the best. (A curvature jump at a
+    joint or a seam is an end the events find themselves.)"""
     loops: list[int] = []
     out: list[float] = []
     disks: list[FloatArray] = [np.zeros((0, 3))]
@@ -157,8 +158,8 @@ def _curvature_maxima(boundary: Boundary) -> tuple[IntArray, FloatArray, FloatAr
 
 
 def _one_per_disk(loop: IntArray, disk: FloatArray, near: float) -> IntArray:
-    """Indices of the first of each cluster of maxima with the same osculating disk (centre
-    and radius within ``near``) on one loop, in order: an arc written as a NURBS curve has
+    """Indices of the first of each cluster of maxima with the same osculating disk (its
+    ``(centre x, centre y, radius)`` within ``near``) on one loop, in order: an arc written as a NURBS curve has
     its constant curvature's rounding for maxima (the gear wheel's, 4,267 of them), every
     one the same disk; the medial map at one of them says whether that disk is empty."""
     keep: list[int] = []

@@ -135,7 +135,10 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     level = g_level if mid and mat2d.rmax > 0 else (g_axis if reading.touches_axis else None)
     if pie:
         level = g_pie
-    segments = split_branches(graph, boundary, level, _touch(cn, theta, sigma, tol))
+    # (a touch only of the mid sheet's own level: a pie slice's cuts are its product with
+    # x, and the axis's own cuts are no level of the radius)
+    touch = _touch(cn, theta, sigma, tol) if level is g_level else None
+    segments = split_branches(graph, boundary, level, touch)
     if pie:
         segments = [_axis_ends(s, cn, tol) for s in segments]
     if not full:
@@ -254,8 +257,9 @@ def _touch(cn: _Canon, theta: float, sigma: float, tol: float) -> TouchFn:
     row (centre, radius and feet in the face frame) that it touches: lifted as a
     touch, one cut there, the row's caps end on ``Theta/2`` at its centre, not on the
     level curve, ``r g / (f_x sin(Theta/2))`` off (the ruling's length past the level
-    curve), or for a dip below the level, a revolved sheet ``g / cos(Theta/2)`` wide is
-    left out. Within a tenth of ``tol`` it is a touch."""
+    curve), or for a dip below the level, a revolved sheet ``2 g / cos(Theta/2)`` wide
+    is left out (its points ``g / cos(Theta/2)`` off). Within a tenth of ``tol`` it is a
+    touch."""
     cos = math.cos(min(theta, math.pi) / 2.0)
 
     def touch(c: FloatArray, r: float, fa: FloatArray, fb: FloatArray) -> bool:
@@ -416,7 +420,13 @@ def _cap_spec(
     if touches_axis and _mirror_side(c, tol):
         return None
     x = np.maximum(c[:, 0], 0.0) if touches_axis else c[:, 0]
-    high = mid and float(np.median(s.radius - x * sigma)) > 0
+    g = s.radius - x * sigma
+    # by the rows off the level: a short segment between two level ends (one row between
+    # them, g = [0, 2.1e-5, 0]) had median 0 and came out low, a revolved sheet of area
+    # 1.4e-14 where the caps meet the mid sheet
+    inner = np.ones(len(g), dtype=bool)
+    inner[[0, -1]] = [s.start.kind != "level", s.end.kind != "level"]
+    high = mid and float(np.median(g[inner] if np.any(inner) else g)) > 0
     feet = tuple(
         k
         for k, f in enumerate((s.foot_a, s.foot_b)[: 1 if s.single else 2])

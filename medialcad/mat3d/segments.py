@@ -19,7 +19,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from medialcad.mat2d.boundary import Boundary, EdgePiece, Element
 from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
@@ -209,9 +209,10 @@ def split_branches(
 
     ``level`` is a radius ``h`` (cut where ``r = h``) or a function ``g(centres (n, 2),
     radii (n,)) -> (n,)`` (cut where ``g = 0``). ``touch(centre, radius, foot_a, foot_b)``
-    says whether the level, at the row where it comes nearest to a branch between two of
-    its crossings, is within the tolerance there: the branch touches the level at that one
-    row (a double root split by rounding), one cut, not a sliver segment between two.
+    says whether the level, at the row where it lies farthest from the branch between two
+    of its crossings (``|g|`` peaks), is within the tolerance there: the branch touches
+    the level at that one row (a double root split by rounding), one cut, not a sliver
+    segment between two.
     """
     out: list[Segment] = []
     for b in graph.branches:
@@ -717,8 +718,6 @@ def _touches(
     plane on a sliver and a revolved sheet of area 9e-16 (unorientable, refused)."""
     if touch is None or len(roots) < 2:
         return roots
-    from scipy.optimize import minimize_scalar
-
     out: list[float] = []
     k = 0
     while k < len(roots):
