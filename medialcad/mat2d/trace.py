@@ -159,9 +159,10 @@ def _curvature_maxima(boundary: Boundary) -> tuple[IntArray, FloatArray, FloatAr
 
 def _one_per_disk(loop: IntArray, disk: FloatArray, near: float) -> IntArray:
     """Indices of the first of each cluster of maxima with the same osculating disk (its
-    ``(centre x, centre y, radius)`` within ``near``) on one loop, in order: an arc written as a NURBS curve has
-    its constant curvature's rounding for maxima (the gear wheel's, 4,267 of them), every
-    one the same disk; the medial map at one of them says whether that disk is empty."""
+    ``(centre x, centre y, radius)`` within ``near``) on one loop, in order: an arc
+    written as a NURBS curve has its constant curvature's rounding for maxima (the gear
+    wheel's, 4,267 of them), every one the same disk; the medial map at one of them says
+    whether that disk is empty."""
     keep: list[int] = []
     for lp in np.unique(loop):
         idx = np.nonzero(loop == lp)[0]

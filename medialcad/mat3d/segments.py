@@ -684,7 +684,7 @@ def _split(
         foot_a = np.vstack([a0[None], fa[idx], a1[None]])
         foot_b = np.vstack([b0[None], fb[idx], b1[None]])
         um = 0.5 * (u0 + u1)
-        k = int(np.clip(np.searchsorted(u, um) - 1, 0, n - 2))
+        k = _interval(u, um)
         # element of each side on this segment: the one at the segment's middle
         el_a = int(
             ea[k] if _side_before(side_cuts[0], um, u[k], u[k + 1], ea[k], ea[k + 1]) else ea[k + 1]
@@ -724,7 +724,8 @@ def _touches(
         if k + 1 < len(roots):
             lo, hi = roots[k], roots[k + 1]
             xs = np.linspace(lo, hi, 17)[1:-1]
-            j = int(np.argmax([abs(g(float(x))) for x in xs]))
+            size = np.array([abs(g(float(x))) for x in xs])
+            j = int(np.argmax(size))
             a, b = (lo if j == 0 else xs[j - 1]), (hi if j == len(xs) - 1 else xs[j + 1])
             best = minimize_scalar(
                 lambda x: -abs(g(float(x))),
@@ -732,7 +733,7 @@ def _touches(
                 method="bounded",
                 options={"xatol": 1e-13},
             )
-            peak = float(best.x) if -best.fun >= abs(g(float(xs[j]))) else float(xs[j])
+            peak = float(best.x) if -best.fun >= size[j] else float(xs[j])
             if touch(*row(peak)):
                 out.append(peak)
                 k += 2
