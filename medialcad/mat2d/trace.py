@@ -52,7 +52,7 @@ from medialcad.mat2d.medial_map import (
     pair_minima,
 )
 from medialcad.mat2d.pocket import POCKET_LENGTH, pocket_rows
-from medialcad.mat2d.selfcheck import disk_excess
+from medialcad.mat2d.selfcheck import disk_error
 from medialcad.mat2d.spline import Spline, fit_spline
 
 __all__ = ["TraceSettings", "trace_medial_graph"]
@@ -1347,22 +1347,25 @@ def _check_topology(graph: MedialGraph, loops: int) -> None:
         )
 
 
-_DISK_EXCESS = 3.0
-"""Tolerances a branch's disk may reach out of the face before the graph is refused (the
-45 fixture profiles' disks reach out by 0.85 tol at most; the oracles allow 2)."""
+_DISK_ERROR = 3.0
+"""Tolerances a branch's disk may reach out of the face, or fall short of its boundary,
+before the graph is refused (the 45 fixture profiles' disks reach out by 0.85 tol at
+most; the oracles allow 2)."""
 
 
 def _check_disks(boundary: Boundary, graph: MedialGraph, tol: float) -> None:
-    """Every branch's disks lie in the face (:mod:`medialcad.mat2d.selfcheck`). A branch
-    fitted through a wrong sample swings between its samples: a spoke of a nearly flat
-    convex corner at a closed spline's seam went 944 tol out of the face and passed the
-    topology check. An error, not a wrong answer."""
-    excess, at = disk_excess(boundary, graph.branches)
-    if excess > _DISK_EXCESS * tol:
+    """Every branch's disks lie in the face and touch its boundary
+    (:mod:`medialcad.mat2d.selfcheck`). A branch fitted through a wrong sample swings
+    between its samples: a spoke of a nearly flat convex corner at a closed spline's
+    seam went 944 tol out of the face and passed the topology check; a branch beside a
+    weak curvature maximum ran through disks 3,000 tol short of the boundary. An error,
+    not a wrong answer."""
+    error, at = disk_error(boundary, graph.branches)
+    if error > _DISK_ERROR * tol:
         raise ComputationError(
             f"the medial axis fails its own check: a disk centred at ({at[0]:.6g}, "
-            f"{at[1]:.6g}) of the face plane reaches {excess / tol:.3g} tol out of the "
-            "face (traced wrong)"
+            f"{at[1]:.6g}) of the face plane is {error / tol:.3g} tol off the face's "
+            "boundary (traced wrong)"
         )
 
 
