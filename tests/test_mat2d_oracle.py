@@ -259,6 +259,49 @@ def test_weak_curvature_maximum_with_the_seam_moved(seam: float) -> None:
     )
 
 
+@pytest.mark.parametrize(
+    "name",
+    [
+        "seam_moved_blob_fuzz16_79708341.bbrep",
+        "seam_moved_blob_fuzz16_67573474.bbrep",
+        "seam_moved_blob_fuzz16_39588338.bbrep",
+    ],
+)
+def test_a_pocket_branch_whose_rows_fall_short_of_its_branch_point(name: str) -> None:
+    """Blobs drawn by the seam-moved strategy (2026-12-06, kept exactly): a weak curvature
+    maximum right beside a branch point's foot (2.4e-7 of the curve's parameter), its
+    pocket branch 1.4e-3 long. The exact pocket rows reach the branch point's feet with
+    a radius 8 tol short of its own, so their refinement bisected towards it round after
+    round: rows 1e-10 apart, and the spline through them swung out by thousands of tol.
+    One blob was answered 1.2e-2 diag unsound (its disks 3,000 tol short of the
+    boundary, which the disk check did not measure then), two were refused. The rows
+    are now thinned to 1e-2 tol apart, and every pocket branch's rows are that far
+    apart."""
+    from medialcad.mat2d.pocket import pocket_rows
+
+    face = TopoDS.Face_s(F.read_exact(name))
+    check_with_oracles(face, name, n_boundary=80, per_branch=12)
+    res = compute(face)
+    spurs = [
+        (res.nodes[b.start], res.nodes[b.end])
+        for b in res.branches
+        if b.start is not None
+        and b.end is not None
+        and {res.nodes[b.start].kind.value, res.nodes[b.end].kind.value}
+        == {"branch_point", "curvature_centre"}
+    ]
+    solved = 0
+    for a, c in spurs:
+        bp, cc = (a, c) if a.kind.value == "branch_point" else (c, a)
+        rows = pocket_rows(res.boundary, bp, cc, res.tol)
+        if rows is None:
+            continue
+        solved += 1
+        values = np.column_stack([rows.centre, rows.radius])
+        assert np.linalg.norm(np.diff(values, axis=0), axis=1).min() >= 1e-2 * res.tol
+    assert solved >= 1
+
+
 def test_curvature_centre_three_tol_from_a_branch_ends_a_spur_of_its_own() -> None:
     """A blob drawn by the seam-moved strategy (2026-12-03, kept exactly as binary BREP):
     a curvature maximum (radius 0.75419) whose empty osculating disk's centre lies

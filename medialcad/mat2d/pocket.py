@@ -200,6 +200,7 @@ def pocket_rows(boundary: Boundary, bp: Node, cc: Node, tol: float) -> PocketRow
         if not new:
             break
         rows = _monotone(rows + new, span)
+    rows = _thinned(rows, _THIN * tol)
     if len(rows) < 4:
         return None
     rows_w = _pocket_params(rows)
@@ -245,6 +246,27 @@ def _pocket_params(rows: list[_PocketRow]) -> FloatArray:
         if r1 > r0 and rn > r1:
             s[-1] = min(1.0, max(s1 + (rn - r1) * (s1 - s0) / (r1 - r0), s1 + 0.25 * (s1 - s0)))
     return s
+
+
+_THIN = 1e-2  # rows closer than this many tol (centre and radius) to the one before: dropped
+
+
+def _thinned(rows: list[_PocketRow], gap: float) -> list[_PocketRow]:
+    """The rows without those within ``gap`` (centre and radius) of the row kept before
+    them; the first and the last row always kept.
+
+    Where the rows' radius does not reach the branch point's as their feet reach its
+    feet (those feet are only known to about the tolerance), the refinement bisects
+    towards the branch point round after round: rows 1e-10 apart, their difference
+    rounding, and an interpolating spline through them swings off by thousands of tol
+    (a blob's weak maximum by a branch point, 2026-12-06)."""
+    out = [rows[0]]
+    for x in rows[1:-1]:
+        if np.linalg.norm(x.values()[:3] - out[-1].values()[:3]) >= gap:
+            out.append(x)
+    if len(out) > 1 and np.linalg.norm(rows[-1].values()[:3] - out[-1].values()[:3]) < gap:
+        out.pop()
+    return [*out, rows[-1]]
 
 
 def _monotone(rows: list[_PocketRow], span: float) -> list[_PocketRow]:
