@@ -164,6 +164,11 @@ class ShapeDistance:
 # --------------------------------------------------------------------------- the boundary
 
 
+_SEED_NODES = 32  # nearest nodes of the bracketing KD-tree looked at per query
+_NEW_SEED = 0.25  # a node this far (times the nearest node's distance) from the seeds
+# already projected from on its face seeds another projection there
+
+
 class SolidBoundary:
     """A solid's boundary as a distance oracle, with inside tests and boundary samples.
 
@@ -426,7 +431,7 @@ class SolidBoundary:
         """An upper bound of ``dist(x, dS)`` from the bracketing KD-tree: ``(distance, point,
         face, uv, distance of the nearest node)``, the better of the nearest node and a local
         projection on its face seeded at it."""
-        dk, jk = self._tree.query(x, k=min(8, len(self._nodes)))
+        dk, jk = self._tree.query(x, k=min(_SEED_NODES, len(self._nodes)))
         dk, jk = np.atleast_1d(dk), np.atleast_1d(jk)
         dn, jn = float(dk[0]), int(jk[0])
         d, foot = dn, self._nodes[jn].copy()
@@ -436,17 +441,23 @@ class SolidBoundary:
         best_face, best_uv = face, uv
         # projected on the nearest node's face, and on each other face with a node
         # nearly as near (beside an edge the nearest node may be the other face's: the
-        # cap's, where the wall's minimum is a third nearer and BRepExtrema misses it)
-        seen: set[int] = set()
+        # cap's, where the wall's minimum is a third nearer and BRepExtrema misses it);
+        # on one face again from a node far from the seeds used there (the other flank
+        # of a sharp tip of an extruded B-spline, 0.05 nearer than the first flank's
+        # foot: BRepExtrema missed it, and so did the projection from the first seed)
+        seeds: dict[int, list[FloatArray]] = {}
         for dj, j in zip(dk, jk, strict=True):
             f_j = int(self._node_face[j])
+            used = seeds.get(f_j, [])
+            node = self._nodes[j]
             if (
-                f_j in seen
-                or (f_j != face and dj > 1.5 * dn)
+                any(np.linalg.norm(node - q) <= _NEW_SEED * dn for q in used)
+                or (f_j != face and not used and dj > 1.5 * dn)
+                or (used and dj > 1.5 * dn)
                 or not np.isfinite(self._node_uv[j]).all()
             ):
                 continue
-            seen.add(f_j)
+            seeds.setdefault(f_j, []).append(node)
             dp, qp, uvp = self._project(x, f_j, self._node_uv[j])
             if dp < d:
                 d, foot, best_face, best_uv = dp, qp, f_j, uvp

@@ -650,6 +650,21 @@ def test_rmax_within_the_tolerance_above_half_the_length() -> None:
     assert not rep.failures(), "; ".join(rep.failures())
 
 
+def test_prism_of_a_blob_with_a_sharp_tip_is_complete() -> None:
+    """A random run's blob prism (2026-12-06, kept exactly): its MAT was read as 1.96e-4
+    diag incomplete at the tip's flank with the random test's own oracle settings. The
+    MAT was right; the 3D oracle's distance had missed the tip's other flank (see
+    ``test_medial_depths_of_an_extruded_blob_are_its_profiles``)."""
+    shape = F.read_exact("blob_extrusion_seed5663.bbrep")
+    result = M.extrusion_mat(shape)
+    rep = M.check(
+        shape, result, "blob prism, sharp tip", per_face=10, max_faces=16, max_edges=16,
+        per_edge=2, n_complete=60, seed=5663,
+    )  # fmt: skip
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())
+
+
 @pytest.mark.parametrize("length", [0.2, 2.0])
 def test_thin_blob_profile_moved_to_its_canonical_frame_and_extruded(length: float) -> None:
     """The same profile moved rigidly to its canonical frame (plane z = 0) and extruded,

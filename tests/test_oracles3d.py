@@ -451,3 +451,33 @@ def test_wrappers() -> None:
         assert sb.distances([[0.0, 0.0, 0.0]])[0] == pytest.approx(1.0)  # centred boxes
     with pytest.raises(ValueError, match="one solid"):
         O.SolidBoundary(cq.Workplane().box(1, 1, 1).faces(">Z").val())
+
+
+def test_medial_depths_of_an_extruded_blob_are_its_profiles() -> None:
+    """A prism of a B-spline blob with a sharp tip (r 0.015, kept exactly from a random
+    run): a wall point's medial depth in 3D is the 2D one of the profile (the cap face,
+    judged by the 2D oracle) wherever the caps are farther. BRepExtrema missed the tip's
+    other flank, 0.0024 nearer than the first flank's foot, and the nearest nodes all
+    projected back onto the first flank: the medial point came out 20 tol too deep, and
+    a correct MAT read as incomplete. Projections from nodes a distance apart fix it."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.GeomAbs import GeomAbs_Plane
+
+    from tests import faces as F
+    from tests import oracles as O2
+
+    solid = F.read_exact("blob_extrusion_seed5663.bbrep")
+    sb = O.SolidBoundary(solid)
+    cap = next(f for f in sb.faces if BRepAdaptor_Surface(f).GetType() == GeomAbs_Plane)
+    plane = BRepAdaptor_Surface(cap).Plane()
+    origin = np.array(plane.Location().Coord())
+    normal = np.array(plane.Axis().Direction().Coord())
+    fb = O2.FaceBoundary(cap)
+    _, m, s = O.medial_points(sb, 60, seed=5663)
+    height = (m - origin) @ normal
+    other_cap = float(np.abs((sb._mesh_nodes - origin) @ normal).max())
+    away = np.minimum(np.abs(height), np.abs(other_cap - np.abs(height))) > 1.5 * s
+    assert away.sum() >= 20
+    for mi, hi, si in zip(m[away], height[away], s[away], strict=True):
+        d2, _ = fb.nearest(mi - hi * normal)
+        assert abs(si - d2) <= 1e-9 * sb.diag, (si, d2)
