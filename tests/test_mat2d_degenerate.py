@@ -166,31 +166,35 @@ def test_a_hole_written_as_one_clamped_spline_with_a_corner_at_its_seam(kink: fl
     _check_oracles(face, mat)
 
 
-def test_the_disk_check_measures_how_far_a_branch_reaches_out_of_the_face() -> None:
-    """:func:`medialcad.mat2d.selfcheck.disk_excess` on a traced graph: its disks lie in the
-    face to a fraction of the tolerance; a branch whose spline is moved sideways by a
-    hundredth of the face's size reaches out by about that much (the check that refuses
-    a wrong graph instead of answering it)."""
+def test_the_disk_check_measures_how_far_a_branch_is_off_the_boundary() -> None:
+    """:func:`medialcad.mat2d.selfcheck.disk_error` on a traced graph: its disks touch the
+    boundary to a fraction of the tolerance; a branch whose spline is moved sideways by a
+    hundredth of the face's size is off by about that much, and so is a branch whose
+    radius is shrunk by that much (disks inside the face that do not touch it: the
+    check that refuses a wrong graph instead of answering it)."""
     import dataclasses
 
-    from medialcad.mat2d.selfcheck import disk_excess
+    from medialcad.mat2d.selfcheck import disk_error
     from medialcad.mat2d.spline import Spline
     from tests import faces as F
 
     face = F.bspline_blob([0.6274, 0.7225, 0.7523, 0.7767, 0.9978, 0.8963, 0.8111, 0.9945])
     mat = medialcad.medial_axis_2d(face)
-    excess, _ = disk_excess(mat.boundary, mat.branches)
-    assert excess <= 0.5 * mat.tol
+    error, _ = disk_error(mat.boundary, mat.branches)
+    assert error <= 0.5 * mat.tol
     longest = max(mat.branches, key=lambda b: len(b.spline.coeffs))
-    shift = np.zeros_like(longest.spline.coeffs)
-    shift[1:-1, 1] = 0.01 * mat.boundary.diag  # the interior poles, across the branch
-    moved = dataclasses.replace(
-        longest,
-        spline=Spline(longest.spline.knots, longest.spline.coeffs + shift, longest.spline.degree),
-    )
     others = [b for b in mat.branches if b is not longest]
-    excess, _ = disk_excess(mat.boundary, [*others, moved])
-    assert excess >= 0.003 * mat.boundary.diag
+    for axis, sign in ((1, 1.0), (2, -1.0)):  # moved across the branch; radius shrunk
+        shift = np.zeros_like(longest.spline.coeffs)
+        shift[1:-1, axis] = sign * 0.01 * mat.boundary.diag  # the interior poles
+        moved = dataclasses.replace(
+            longest,
+            spline=Spline(
+                longest.spline.knots, longest.spline.coeffs + shift, longest.spline.degree
+            ),
+        )
+        error, _ = disk_error(mat.boundary, [*others, moved])
+        assert error >= 0.003 * mat.boundary.diag
 
 
 @pytest.mark.parametrize("gap", [0.0, 3e-5])
@@ -404,3 +408,41 @@ def test_line_across_a_nearly_flat_corner_with_a_joint_gap_is_still_the_partner(
         across = r_sym < r_far - 1e-6
         assert across.sum() > 100
         assert np.all(m.partner_element[across] == 2), f"gap {gap}: the far side took over"
+
+
+def test_a_plateau_of_tied_partner_candidates_is_refined_once() -> None:
+    """Along a stretch of the sample's own tangent circle every point is a partner: the
+    discrete minima of ``f`` there are its rounding. One candidate per run of values
+    tied to 1e-9 (the least of the run) is refined; a strict minimum elsewhere keeps its
+    own."""
+    from types import SimpleNamespace
+
+    from medialcad.mat2d.medial_map import _local_minima
+
+    n = 40
+    points = np.column_stack([np.arange(n, dtype=float), np.zeros(n)])
+    C = SimpleNamespace(starts=np.array([0]), stops=np.array([n]), points=points)
+    rng = np.random.default_rng(0)
+    row = 2.0 + np.linspace(-1.0, 1.0, n) ** 2  # a strict minimum at the middle
+    row[:12] = 1.5 * (1 + 1e-13 * rng.standard_normal(12))  # a plateau, noisy
+    rows, j, f = _local_minima(C, 0, np.array([7]), row[None, :], 1e-12)
+    assert rows.tolist() == [7, 7]
+    assert j[0] < 12 and f[0] == row[:12].min()
+    assert j[1] in (19, 20) and f[1] == row[19:21].min()
+
+
+def test_a_full_circle_written_as_a_nurbs_has_the_circles_mat() -> None:
+    """A disk whose circle is a rational B-spline (as NURBS-only writers give it): one
+    node at the centre with the circle's radius, no branch, like the circle itself."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_NurbsConvert
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    disk = cq.Face.makeFromWires(cq.Wire.makeCircle(10.0, cq.Vector(1, 2, 0), cq.Vector(0, 0, 1)))
+    shape = BRepBuilderAPI_NurbsConvert(disk.wrapped, True).Shape()
+    face = TopoDS.Face_s(TopExp_Explorer(shape, TopAbs_FACE).Current())
+    mat = medialcad.medial_axis_2d(face)
+    assert len(mat.branches) == 0 and len(mat.nodes) == 1
+    assert np.allclose(mat.nodes[0].point, [1, 2, 0], atol=1e-9)
+    assert abs(mat.nodes[0].radius - 10.0) < 1e-9

@@ -727,7 +727,26 @@ def _local_minima(
     if closed:
         lm[:, -1] = False  # the seam point is the first candidate too
     ri, jj = np.nonzero(lm)
-    return rows[ri], jj.astype(np.int64), fg[ri, jj]
+    if len(ri) == 0:
+        return rows[ri], jj.astype(np.int64), fg[ri, jj]
+    # one candidate per plateau: a run of candidates whose values tie with the one
+    # before them to rounding (a stretch on the sample's tangent circle, where every
+    # point is a partner: a full circle written as a NURBS had ~430 "minima" per sample,
+    # each refined by Newton, 1.65 s against 0.014 s for the circle)
+    with np.errstate(invalid="ignore"):
+        tie = np.abs(fg - left) <= _PLATEAU * np.abs(fg)
+    tie[:, 0] = False
+    run = np.cumsum(~tie, axis=1)[ri, jj]
+    vals = fg[ri, jj]
+    order = np.lexsort((vals, run, ri))
+    first = np.r_[True, (ri[order][1:] != ri[order][:-1]) | (run[order][1:] != run[order][:-1])]
+    keep = np.sort(order[first])
+    return rows[ri[keep]], jj[keep].astype(np.int64), vals[keep]
+
+
+_PLATEAU = 1e-9
+"""Relative difference below which two neighbouring candidates' values tie (the
+values' own rounding near the sample reaches 4e-11 on a unit circle)."""
 
 
 def _refine_element(
