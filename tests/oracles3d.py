@@ -165,8 +165,11 @@ class ShapeDistance:
 
 
 _SEED_NODES = 32  # nearest nodes of the bracketing KD-tree looked at per query
-_NEW_SEED = 0.25  # a node this far (times the nearest node's distance) from the seeds
-# already projected from on its face seeds another projection there
+_NEW_SEED = 1.0
+"""A node farther than this (times the nearest node's distance) from every seed already
+projected from on its face seeds another projection there. On the prism of a blob with
+a sharp tip it fixed the missed flank at 0.25, 0.5, 0.75 and 1.0; 1.0 costs the fewest
+projections (+35 % over one seed per face, against +250 % at 0.25)."""
 
 
 class SolidBoundary:
