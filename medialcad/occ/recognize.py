@@ -586,6 +586,57 @@ def _area_centroid(face: TopoDS_Face) -> tuple[float, FloatArray]:
     return float(props.Mass()), _xyz(props.CentreOfMass())
 
 
+def _first_moment(face: TopoDS_Face, frame: Frame) -> float:
+    """The first moment ``A xbar`` of a planar face in the plane of ``frame`` about the
+    frame's ``y`` axis (``x`` along ``frame.xdir``), by Green's theorem on its edges'
+    exact curves: Gauss-Legendre on every knot span, each cut in eight where there are
+    fewer than eight spans (one 10-point rule is exact on a polynomial span of degree 6
+    or less).
+
+    OCC's adaptive surface integration gave a B-spline pie slice's start cap the right
+    area but its centroid 2.6e-3 off in ``x`` (a random run, 2026-12-07): the Pappus check
+    refused a valid revolution; the boundary integral agrees with the solid's volume."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.GeomAbs import GeomAbs_CN
+    from OCP.TColStd import TColStd_Array1OfReal
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+
+    origin, xdir, ydir = frame.origin, frame.xdir, frame.ydir
+    area = moment = 0.0
+    ex = TopExp_Explorer(face, TopAbs_EDGE)
+    while ex.More():
+        edge = TopoDS.Edge_s(ex.Current())
+        ex.Next()
+        if BRep_Tool.Degenerated_s(edge):
+            continue
+        c = BRepAdaptor_Curve(edge)
+        n = c.NbIntervals(GeomAbs_CN)
+        knots = TColStd_Array1OfReal(1, n + 1)
+        c.Intervals(knots, GeomAbs_CN)
+        cuts = np.array([knots.Value(i) for i in range(1, n + 2)])
+        k = 1 if n >= 8 else 8  # a polynomial span's integrand is exact in one
+        cuts = np.interp(np.arange(k * n + 1) / k, np.arange(n + 1), cuts)
+        half = 0.5 * np.diff(cuts)
+        t = ((cuts[:-1] + half)[:, None] + half[:, None] * _GAUSS_X).ravel()
+        w = (half[:, None] * _GAUSS_W).ravel()
+        p, d1 = np.zeros((len(t), 3)), np.zeros((len(t), 3))
+        pnt, vec = gp_Pnt(), gp_Vec()
+        for j, tj in enumerate(t):
+            c.D1(float(tj), pnt, vec)
+            p[j] = (pnt.X(), pnt.Y(), pnt.Z())
+            d1[j] = (vec.X(), vec.Y(), vec.Z())
+        x, y = (p - origin) @ xdir, (p - origin) @ ydir
+        dx, dy = d1 @ xdir, d1 @ ydir
+        sign = -1.0 if edge.Orientation() == TopAbs_REVERSED else 1.0
+        area += sign * 0.5 * float(np.sum(w * (x * dy - y * dx)))
+        moment += sign * 0.5 * float(np.sum(w * x * x * dy))
+    return -moment if area < 0 else moment  # (a boundary running clockwise in the frame)
+
+
+_GAUSS_X, _GAUSS_W = np.polynomial.legendre.leggauss(10)
+
+
 def _perp(d: FloatArray) -> FloatArray:
     axis = np.eye(3)[int(np.argmin(np.abs(d)))]
     return _unit(np.cross(d, axis))
@@ -726,9 +777,7 @@ def _recognize_revolution(
         except MedialCadError as err:
             first_reason = first_reason or f"not a revolution ({err})"
             continue
-        area, centroid = _area_centroid(profile)
-        xbar = float(centroid @ frame.xdir - origin @ frame.xdir)
-        if abs(got.angle * area * xbar - volume) > VOLUME_RTOL * volume:
+        if abs(got.angle * _first_moment(profile, frame) - volume) > VOLUME_RTOL * volume:
             first_reason = first_reason or "not a revolution (volume differs from Pappus' rule)"
             continue
         touches = _touches_axis(profile, frame, lin_tol)
