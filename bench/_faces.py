@@ -11,6 +11,7 @@ from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_MakeEdge,
     BRepBuilderAPI_MakeFace,
     BRepBuilderAPI_MakeWire,
+    BRepBuilderAPI_NurbsConvert,
     BRepBuilderAPI_Transform,
 )
 from OCP.GC import GC_MakeArcOfCircle
@@ -145,6 +146,22 @@ def gear_with_hole(teeth: int = 21) -> TopoDS_Face:
     return mk.Face()
 
 
+def _nurbs(face: TopoDS_Face) -> TopoDS_Face:
+    """The face with every curve a (rational) B-spline, as NURBS-only writers give it."""
+    shape = BRepBuilderAPI_NurbsConvert(face, True).Shape()
+    return TopoDS.Face_s(TopExp_Explorer(shape, TopAbs_FACE).Current())
+
+
+def nurbs_circle() -> TopoDS_Face:
+    """The circle's disk, its circle a rational B-spline."""
+    return _nurbs(circle())
+
+
+def nurbs_gear_with_hole() -> TopoDS_Face:
+    """The gear with every arc a rational B-spline."""
+    return _nurbs(gear_with_hole())
+
+
 BUILTIN_FACES: dict[str, Callable[[], TopoDS_Face]] = {
     "gear_with_hole": gear_with_hole,
     "bspline_blob": bspline_blob,
@@ -153,6 +170,8 @@ BUILTIN_FACES: dict[str, Callable[[], TopoDS_Face]] = {
     "circle": circle,
     "rectangle": rectangle,
     "l_shape_tilted": l_shape_tilted,
+    "nurbs_circle": nurbs_circle,
+    "nurbs_gear_with_hole": nurbs_gear_with_hole,
 }
 
 
