@@ -147,9 +147,25 @@ def gear_with_hole(teeth: int = 21) -> TopoDS_Face:
 
 
 def _nurbs(face: TopoDS_Face) -> TopoDS_Face:
-    """The face with every curve a (rational) B-spline, as NURBS-only writers give it."""
-    shape = BRepBuilderAPI_NurbsConvert(face, True).Shape()
-    return TopoDS.Face_s(TopExp_Explorer(shape, TopAbs_FACE).Current())
+    """The face with every edge a (rational) B-spline, as NURBS-only writers give them,
+    on its own plane (the bench's baselines read plane faces only)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.BRepTools import BRepTools
+    from OCP.TopAbs import TopAbs_WIRE
+
+    def converted(wire: object) -> object:
+        return TopoDS.Wire_s(BRepBuilderAPI_NurbsConvert(wire, True).Shape())
+
+    outer = BRepTools.OuterWire_s(face)
+    mk = BRepBuilderAPI_MakeFace(BRepAdaptor_Surface(face).Plane(), converted(outer), True)
+    ex = TopExp_Explorer(face, TopAbs_WIRE)
+    while ex.More():
+        if not ex.Current().IsSame(outer):
+            mk.Add(converted(ex.Current()))
+        ex.Next()
+    if not mk.IsDone():
+        raise RuntimeError("NURBS face construction failed")
+    return mk.Face()
 
 
 def nurbs_circle() -> TopoDS_Face:
