@@ -432,8 +432,8 @@ class SolidBoundary:
         self, x: FloatArray
     ) -> tuple[float, FloatArray, int | None, FloatArray | None, float]:
         """An upper bound of ``dist(x, dS)`` from the bracketing KD-tree: ``(distance, point,
-        face, uv, distance of the nearest node)``, the better of the nearest node and a local
-        projection on its face seeded at it."""
+        face, uv, distance of the nearest node)``, the best of the nearest node and local
+        projections seeded at nodes among the nearest (see below)."""
         dk, jk = self._tree.query(x, k=min(_SEED_NODES, len(self._nodes)))
         dk, jk = np.atleast_1d(dk), np.atleast_1d(jk)
         dn, jn = float(dk[0]), int(jk[0])
@@ -446,17 +446,18 @@ class SolidBoundary:
         # nearly as near (beside an edge the nearest node may be the other face's: the
         # cap's, where the wall's minimum is a third nearer and BRepExtrema misses it);
         # on one face again from a node far from the seeds used there (the other flank
-        # of a sharp tip of an extruded B-spline, 0.05 nearer than the first flank's
-        # foot: BRepExtrema missed it, and so did the projection from the first seed)
+        # of a sharp tip of an extruded B-spline, 0.0024 nearer than the first flank's
+        # foot: BRepExtrema missed it, and so did the projection from the first seed).
+        # Only nodes within 1.5 times the nearest node's distance seed. A second minimum
+        # whose nodes all lie within that distance of a seed is still left to BRepExtrema.
         seeds: dict[int, list[FloatArray]] = {}
         for dj, j in zip(dk, jk, strict=True):
             f_j = int(self._node_face[j])
             used = seeds.get(f_j, [])
             node = self._nodes[j]
             if (
-                any(np.linalg.norm(node - q) <= _NEW_SEED * dn for q in used)
-                or (f_j != face and not used and dj > 1.5 * dn)
-                or (used and dj > 1.5 * dn)
+                dj > 1.5 * dn
+                or any(np.linalg.norm(node - q) <= _NEW_SEED * dn for q in used)
                 or not np.isfinite(self._node_uv[j]).all()
             ):
                 continue

@@ -429,11 +429,35 @@ def test_a_plateau_of_tied_partner_candidates_is_refined_once() -> None:
     assert rows.tolist() == [7, 7]
     assert j[0] < 12 and f[0] == row[:12].min()
     assert j[1] in (19, 20) and f[1] == row[19:21].min()
+    # two equal minima apart, a bump of 1e-7 between them climbed in steps of 6e-10:
+    # ties measured step by step would chain across it; both minima are kept
+    t = np.arange(1000) / 1000.0
+    wavy = 1.0 + 5e-8 * np.cos(4 * np.pi * t + np.pi)
+    n = len(wavy)
+    C = SimpleNamespace(
+        starts=np.array([0]), stops=np.array([n]), points=np.column_stack([t, np.zeros(n)])
+    )
+    rows, j, f = _local_minima(C, 0, np.array([0]), wavy[None, :], 1e-12)
+    assert sorted(j.tolist()) == [0, 500, 999]  # (the open row's ends are minima too)
 
 
-def test_a_full_circle_written_as_a_nurbs_has_the_circles_mat() -> None:
+def test_a_full_circle_written_as_a_nurbs_has_the_circles_mat(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     """A disk whose circle is a rational B-spline (as NURBS-only writers give it): one
-    node at the centre with the circle's radius, no branch, like the circle itself."""
+    node at the centre with the circle's radius, no branch, like the circle itself; its
+    partners solved a few hundred times, not once per tied candidate (192,722 times
+    before the plateau rule)."""
+    import medialcad.mat2d.medial_map as MM
+
+    solved = [0]
+    refine = MM._refine_on_edge
+
+    def counted(e: Any, b: Any, n: Any, t: Any, lo: Any, hi: Any) -> Any:
+        solved[0] += len(t)
+        return refine(e, b, n, t, lo, hi)
+
+    monkeypatch.setattr(MM, "_refine_on_edge", counted)
     from OCP.BRepBuilderAPI import BRepBuilderAPI_NurbsConvert
     from OCP.TopAbs import TopAbs_FACE
     from OCP.TopExp import TopExp_Explorer
@@ -446,3 +470,4 @@ def test_a_full_circle_written_as_a_nurbs_has_the_circles_mat() -> None:
     assert len(mat.branches) == 0 and len(mat.nodes) == 1
     assert np.allclose(mat.nodes[0].point, [1, 2, 0], atol=1e-9)
     assert abs(mat.nodes[0].radius - 10.0) < 1e-9
+    assert 0 < solved[0] < 5000

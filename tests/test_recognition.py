@@ -658,10 +658,17 @@ def test_a_spline_pie_slice_whose_cap_centroid_occ_misplaces_is_a_revolution() -
 
 
 @pytest.mark.parametrize("hole", [False, True])
-def test_the_first_moment_of_a_profile_is_the_closed_form(hole: bool) -> None:
+@pytest.mark.parametrize("how", ["baked", "located", "reversed", "internal edge"])
+def test_the_first_moment_of_a_profile_is_the_closed_form(hole: bool, how: str) -> None:
     """A rectangle ``[1, 3] x [0, 2]`` (with a hole of radius 0.5 at ``(2, 1)``), placed far
-    from the origin and tilted: its first moment about the frame's ``y`` axis is
-    ``2 (3^2 - 1^2) / 2 = 8`` (less ``pi 0.25 * 2`` for the hole), to rounding."""
+    from the origin and tilted (the placement baked into its geometry, or a location of
+    the face, or that face reversed, or with an INTERNAL edge across it): its first
+    moment about the frame's ``y`` axis is ``2 (3^2 - 1^2) / 2 = 8`` (less
+    ``pi 0.25 * 2`` for the hole), to rounding."""
+    from OCP.BRep import BRep_Builder
+    from OCP.TopAbs import TopAbs_INTERNAL
+    from OCP.TopLoc import TopLoc_Location
+
     from medialcad.frame import Frame
     from medialcad.occ.recognize import _first_moment
 
@@ -670,11 +677,21 @@ def test_the_first_moment_of_a_profile_is_the_closed_form(hole: bool) -> None:
             [cq.Vector(x, y, 0) for x, y in [(1, 0), (3, 0), (3, 2), (1, 2)]], close=True
         ),
         [cq.Wire.makeCircle(0.5, cq.Vector(2, 1, 0), cq.Vector(0, 0, 1))] if hole else [],
-    )
+    ).wrapped
+    if how == "internal edge":
+        edge = cq.Edge.makeLine(cq.Vector(1.2, 0.2, 0), cq.Vector(1.2, 1.8, 0)).wrapped
+        wire = cq.Wire.assembleEdges([cq.Edge(edge)]).wrapped
+        wire.Orientation(TopAbs_INTERNAL)
+        BRep_Builder().Add(face, wire)
     trsf = gp_Trsf()
     trsf.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 2, 3)), 0.7)
     trsf.SetTranslationPart(gp_Vec(1e3, -2e3, 5e2))
-    placed = TopoDS.Face_s(BRepBuilderAPI_Transform(face.wrapped, trsf, True).Shape())
+    if how in ("located", "reversed"):
+        placed = TopoDS.Face_s(face.Moved(TopLoc_Location(trsf)))
+        if how == "reversed":
+            placed = TopoDS.Face_s(placed.Reversed())
+    else:
+        placed = TopoDS.Face_s(BRepBuilderAPI_Transform(face, trsf, True).Shape())
 
     def moved(v: tuple[float, float, float]) -> np.ndarray:
         return np.array(gp_Pnt(*v).Transformed(trsf).Coord())

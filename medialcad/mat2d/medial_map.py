@@ -729,15 +729,26 @@ def _local_minima(
     ri, jj = np.nonzero(lm)
     if len(ri) == 0:
         return rows[ri], jj.astype(np.int64), fg[ri, jj]
-    # one candidate per plateau: a run of candidates whose values tie with the one
-    # before them to rounding (a stretch on the sample's tangent circle, where every
-    # point is a partner: a full circle written as a NURBS had ~430 "minima" per sample,
-    # each refined by Newton, 1.65 s against 0.014 s for the circle)
+    # one candidate per plateau: a run of grid values each tied with the one before it
+    # to rounding, and all within rounding of each other (a stretch on the sample's
+    # tangent circle, where every point is a partner: a full circle written as a NURBS
+    # had ~430 "minima" per sample, each refined by Newton, 1.65 s against 0.014 s for
+    # the circle)
     with np.errstate(invalid="ignore"):
         tie = np.abs(fg - left) <= _PLATEAU * np.abs(fg)
     tie[:, 0] = False
-    run = np.cumsum(~tie, axis=1)[ri, jj]
+    runs = np.cumsum(~tie, axis=1) + (fg.shape[1] + 1) * np.arange(len(fg))[:, None]
+    finite = np.isfinite(fg)
+    lo_run = np.full(runs.max() + 1, np.inf)
+    hi_run = np.full(runs.max() + 1, -np.inf)
+    np.minimum.at(lo_run, runs[finite], fg[finite])
+    np.maximum.at(hi_run, runs[finite], fg[finite])
+    run = runs[ri, jj]
+    flat = hi_run[run] - lo_run[run] <= _PLATEAU * np.abs(lo_run[run])
     vals = fg[ri, jj]
+    # a chain of ties that drifts (across a bump between two distinct minima) is no
+    # plateau: each of its minima is its own candidate
+    run = np.where(flat, run, -1 - np.arange(len(run)))
     order = np.lexsort((vals, run, ri))
     first = np.r_[True, (ri[order][1:] != ri[order][:-1]) | (run[order][1:] != run[order][:-1])]
     keep = np.sort(order[first])
@@ -745,8 +756,8 @@ def _local_minima(
 
 
 _PLATEAU = 1e-9
-"""Relative difference below which two neighbouring candidates' values tie (the
-values' own rounding near the sample reaches 4e-11 on a unit circle)."""
+"""Relative difference below which two grid values of ``f`` tie (the values' own
+rounding near the sample reaches 4e-11 on a unit circle)."""
 
 
 def _refine_element(

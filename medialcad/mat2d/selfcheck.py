@@ -11,8 +11,9 @@ The distance found is the least over the nearest boundary samples, each refined 
 Newton on its curve: never less than the true distance, so a disk found to reach out of
 the face by ``error`` reaches out by at least that much. A disk found short of the
 boundary is short by at most that much: the true nearest point may have been missed
-(three samples a two-thousandth of the diagonal apart, each refined, leave no gap that
-matters at the tolerance).
+(the three nearest samples, at most a two-thousandth of the diagonal apart on edges up
+to ten diagonals long, are each refined by Newton, and the nearest sample's own
+distance bounds the answer).
 """
 
 from __future__ import annotations
@@ -104,7 +105,9 @@ def _nearest(boundary: Boundary, q: FloatArray) -> tuple[FloatArray, BoolArray]:
             t = np.clip(t - np.where(hh > 0, g / np.where(hh > 0, hh, 1.0), 0.0), lo, hi)
         foot, n, _ = boundary.frame_at(e, t)
         _update(best, inside, rows[idx], c, foot, n, reflex.at(el[idx], t))
-    return best, inside
+    # the nearest sample itself bounds the distance too (a Newton run that stalled or
+    # was clamped must not make a disk read as short of the boundary)
+    return np.minimum(best, d[:, 0]), inside
 
 
 @dataclass(frozen=True)

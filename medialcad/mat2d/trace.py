@@ -1350,7 +1350,8 @@ def _check_topology(graph: MedialGraph, loops: int) -> None:
 _DISK_ERROR = 3.0
 """Tolerances a branch's disk may reach out of the face, or fall short of its boundary,
 before the graph is refused (the 45 fixture profiles' disks reach out by 0.85 tol at
-most; the oracles allow 2)."""
+most; over a test run's 413 graphs, out by 1.1 and short by 0.55 tol at most; the
+oracles allow 2)."""
 
 
 def _check_disks(boundary: Boundary, graph: MedialGraph, tol: float) -> None:
