@@ -727,8 +727,6 @@ def _local_minima(
     if closed:
         lm[:, -1] = False  # the seam point is the first candidate too
     ri, jj = np.nonzero(lm)
-    if len(ri) == 0:
-        return rows[ri], jj.astype(np.int64), fg[ri, jj]
     # one candidate per plateau: a run of grid values each tied with the one before it
     # to rounding, and all within rounding of each other (a stretch on the sample's
     # tangent circle, where every point is a partner: a full circle written as a NURBS
@@ -737,6 +735,8 @@ def _local_minima(
     with np.errstate(invalid="ignore"):
         tie = np.abs(fg - left) <= _PLATEAU * np.abs(fg)
     tie[:, 0] = False
+    if len(ri) == 0 or not tie.any():  # no run longer than one value: every minimum is its own
+        return rows[ri], jj.astype(np.int64), fg[ri, jj]
     runs = np.cumsum(~tie, axis=1) + (fg.shape[1] + 1) * np.arange(len(fg))[:, None]
     finite = np.isfinite(fg)
     lo_run = np.full(runs.max() + 1, np.inf)
