@@ -59,6 +59,7 @@ __all__ = ["TraceSettings", "trace_medial_graph"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
+BoolArray = NDArray[np.bool_]
 
 
 @dataclass(frozen=True)
@@ -1136,9 +1137,9 @@ def _merge_nodes(events: list[_Event], radius: float) -> int:
         # branch point where the corner's spoke ends, solved from either side, landed
         # 6 tol apart along the spoke (1.5e-4 rad) with the same feet to 1e-7; at 5e-5
         # rad more than 10 tol apart (the node is their mean: an open accuracy point)
-        for i, j in tree.query_pairs(100.0 * radius):
-            if find(i) != find(j) and _same_feet(events[i], events[j], radius):
-                parent[find(i)] = find(j)
+        near = tree.query_pairs(100.0 * radius, output_type="ndarray")
+        for i, j in near[_same_feet(events, near, radius)]:
+            parent[find(int(i))] = find(int(j))
     roots: dict[int, int] = {}
     for i, e in enumerate(events):
         e.node = roots.setdefault(find(i), len(roots))
@@ -1169,17 +1170,28 @@ def _merge_nodes(events: list[_Event], radius: float) -> int:
     return n
 
 
-def _same_feet(a: _Event, b: _Event, radius: float) -> bool:
-    """Whether two branch points touch the boundary at the same points (each foot
-    within ``radius`` of one of the other's, three feet or more each)."""
-    if a.kind is not NodeKind.BRANCH_POINT or b.kind is not NodeKind.BRANCH_POINT:
-        return False
-    if len(a.feet) < 3 or len(a.feet) != len(b.feet):
-        return False
-    fa = np.array([f[2] for f in a.feet])
-    fb = np.array([f[2] for f in b.feet])
-    gap = np.linalg.norm(fa[:, None, :] - fb[None, :, :], axis=2)
-    return bool(np.all(gap.min(axis=1) <= radius) and np.all(gap.min(axis=0) <= radius))
+def _same_feet(events: list[_Event], pairs: IntArray, radius: float) -> BoolArray:
+    """For each pair of events ``(i, j)``, whether both are branch points touching the
+    boundary at the same points (each foot within ``radius`` of one of the other's,
+    three feet or more each)."""
+    out = np.zeros(len(pairs), dtype=bool)
+    count = np.array(
+        [len(e.feet) if e.kind is NodeKind.BRANCH_POINT else 0 for e in events], dtype=np.int64
+    )
+    if len(pairs) == 0:
+        return out
+    k = count[pairs[:, 0]]
+    for n in np.unique(k[(k >= 3) & (k == count[pairs[:, 1]])]):
+        sel = np.nonzero((k == n) & (count[pairs[:, 1]] == n))[0]
+        ids = np.unique(pairs[sel])
+        feet = np.array([[f[2] for f in events[i].feet] for i in ids])  # (m, n, 2)
+        fa = feet[np.searchsorted(ids, pairs[sel, 0])]
+        fb = feet[np.searchsorted(ids, pairs[sel, 1])]
+        gap = np.linalg.norm(fa[:, :, None, :] - fb[:, None, :, :], axis=3)
+        out[sel] = np.all(gap.min(axis=2) <= radius, axis=1) & np.all(
+            gap.min(axis=1) <= radius, axis=1
+        )
+    return out
 
 
 @dataclass

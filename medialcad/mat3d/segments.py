@@ -13,7 +13,7 @@ Pure numpy/scipy: no OCC.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any, TypeVar
 
@@ -38,8 +38,10 @@ TouchFn = Callable[[FloatArray, float, FloatArray, FloatArray], bool]
 class End:
     """One end of a segment.
 
-    ``kind`` is ``"node"`` (``node`` gives the graph node), ``"transition"`` (a footpoint
-    changes element), ``"level"`` (``r = h``) or ``"split"`` (cut of a closed branch).
+    ``kind`` is ``"node"`` (``node`` gives the graph node), ``"pass"`` (a curvature-centre
+    node more branches end at: it ends none of the medial surface), ``"transition"`` (a
+    footpoint changes element), ``"level"`` (``r = h``) or ``"split"`` (cut of a closed
+    branch).
     """
 
     kind: str
@@ -188,6 +190,18 @@ def _joint(
     return p, n[0]
 
 
+def _node_end(graph: MedialGraph, node: int | None) -> End:
+    """The end of a branch at ``node`` (a closed branch's: its split). A curvature centre
+    that more branches end at is a node they pass through (``"pass"``): no skeletal edge
+    there, their sheets join as at a transition."""
+    if node is None:
+        return End("split")
+    kind = _end_kind(graph, node)
+    if kind is NodeKind.CURVATURE_CENTRE and _degree(graph, node) > 1:
+        return End("pass", node, kind)
+    return End("node", node, kind)
+
+
 def _end_kind(graph: MedialGraph, node: int) -> NodeKind:
     """The node's kind as an end of a branch: a "branch point" that ends a single branch
     (a flat arc the 2D engine saw as many footpoints) is an end point, a curvature centre."""
@@ -221,6 +235,8 @@ def split_branches(
     for nd in graph.nodes:
         if nd.index not in used and nd.kind is NodeKind.CURVATURE_CENTRE:
             out.extend(_fan(graph, boundary, nd.index, None))
+        elif nd.kind is NodeKind.CURVATURE_CENTRE and _degree(graph, nd.index) > 1:
+            out.extend(_contact_fans(graph, boundary, nd.index))
     return [_unswing(_dedupe(s), graph.tol) for s in out]
 
 
@@ -435,7 +451,6 @@ def _fan(
     """
     nd = graph.nodes[node]
     r = nd.radius
-    step = r * min(0.25, (2.0 * graph.tol / max(r, 1e-300)) ** 0.25)
     if ends is None:
         loop = graph.elements[nd.footpoints[0].element].loop if nd.footpoints else 0
         length = boundary.loop_lengths[loop]
@@ -464,6 +479,22 @@ def _fan(
             return []
         lo, span = best[1], best[2]
         pieces = [(lo, lo + span)]
+    return _fan_segments(graph, boundary, node, loop, pieces)
+
+
+def _fan_segments(
+    graph: MedialGraph,
+    boundary: Boundary,
+    node: int,
+    loop: int,
+    pieces: Sequence[tuple[float, float]],
+) -> list[Segment]:
+    """One-sided segments of a curvature-centre node over the stretches ``pieces`` (loop
+    coordinates ``s0 -> s1``) of ``loop``: the node's centre and radius on every row, the
+    stretch's points as feet."""
+    nd = graph.nodes[node]
+    r = nd.radius
+    step = r * min(0.25, (2.0 * graph.tol / max(r, 1e-300)) ** 0.25)
     end = End("node", node, NodeKind.CURVATURE_CENTRE)
     segs = []
     for s0, s1 in pieces:
@@ -481,6 +512,60 @@ def _fan(
             Segment(-1, w, centre, np.full(m, r), part, part.copy(), -1, -1, end, end, True)
         )
     return segs
+
+
+def _degree(graph: MedialGraph, node: int) -> int:
+    return sum((b.start == node) + (b.end == node) for b in graph.branches)
+
+
+def _contact_fans(graph: MedialGraph, boundary: Boundary, node: int) -> list[Segment]:
+    """The fans of a curvature-centre node over every stretch of the boundary its disk
+    touches: runs of edge elements lying on its circle (within the tolerance), merged
+    where they join. The disk of a node two branches pass through touches the boundary
+    along stretches apart from each other (the end arc of a slot cut in two by the part
+    it sticks out of: the branch from the part reaches the arc's centre between two
+    fillets, the slot's own branch goes on), which no single branch's feet bound."""
+    nd = graph.nodes[node]
+    r = nd.radius
+    eps = max(10.0 * graph.tol, 1e-6 * boundary.diag)
+    out: list[Segment] = []
+    for loop, length in enumerate(boundary.loop_lengths):
+        els = sorted((e for e in boundary.elements if e.loop == loop), key=lambda e: e.s0)
+        on = []
+        for e in els:
+            if e.piece is None:
+                on.append(False)
+                continue
+            pts = e.piece.curve.point(np.linspace(e.piece.t0, e.piece.t1, 9))
+            gap = np.abs(np.linalg.norm(pts - nd.point_2d, axis=1) - r)
+            on.append(bool(e.length > 0 and gap.max() <= eps))
+        if not any(on):
+            continue
+        if all(on):
+            runs = [(0.0, 0.5 * length), (0.5 * length, length)]
+        else:
+            # start after an element off the circle, so that no run is cut at the seam
+            k0 = on.index(False)
+            runs = []
+            cur: list[float] | None = None
+            for i in range(1, len(els) + 1):
+                j = (k0 + i) % len(els)
+                e = els[j]
+                s0 = e.s0 if j > k0 else e.s0 + length
+                if on[j]:
+                    if cur is not None and abs(s0 - cur[1]) <= 1e-9 * length:
+                        cur[1] = s0 + e.length
+                    else:
+                        if cur is not None:
+                            runs.append((cur[0], cur[1]))
+                        cur = [s0, s0 + e.length]
+                elif cur is not None:
+                    runs.append((cur[0], cur[1]))
+                    cur = None
+            if cur is not None:
+                runs.append((cur[0], cur[1]))
+        out.extend(_fan_segments(graph, boundary, node, loop, runs))
+    return out
 
 
 def _split(
@@ -527,6 +612,8 @@ def _split(
     for where, node in ((0, b.start), (n - 1, b.end)):
         if node is None or _end_kind(graph, node) is not NodeKind.CURVATURE_CENTRE:
             continue
+        if _degree(graph, node) > 1:
+            continue  # a node branches pass through: its fans are the node's own, once
         nd = graph.nodes[node]
         fan: list[Segment] = []
         if float(np.linalg.norm(fa[where] - fb[where])) > 1e-3 * graph.tol:
@@ -537,6 +624,12 @@ def _split(
             pb = _project(boundary, int(eb[where]), fb[where])[1]
             fan = _fan(graph, boundary, node, ((int(ea[where]), pa), (int(eb[where]), pb)))
         if fan:
+            fans.extend(fan)
+        elif float(np.linalg.norm(fa[where] - fb[where])) > graph.tol and (
+            fan := _contact_fans(graph, boundary, node)
+        ):
+            # feet far apart, the stretch between them not on the node's circle: the disk
+            # touches stretches apart from each other, each its own fan; the feet stay
             fans.extend(fan)
         else:
             own = [f.point_2d for f in nd.footpoints]
@@ -664,10 +757,8 @@ def _split(
     # where each side changes element
     side_cuts = ([m[0] for m in merged if 0 in m[6]], [m[0] for m in merged if 1 in m[6]])
 
-    start_end = (
-        End("node", b.start, _end_kind(graph, b.start)) if b.start is not None else End("split")
-    )
-    stop_end = End("node", b.end, _end_kind(graph, b.end)) if b.end is not None else End("split")
+    start_end = _node_end(graph, b.start)
+    stop_end = _node_end(graph, b.end)
     bounds = [(0.0, start_end, ca[0], float(rad[0]), fa[0], fb[0])]
     bounds += [(m[0], End(m[1]), m[2], m[3], m[4], m[5]) for m in merged]
     bounds += [(1.0, stop_end, ca[-1], float(rad[-1]), fa[-1], fb[-1])]
