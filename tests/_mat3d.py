@@ -408,7 +408,7 @@ class Report:
     completeness: float
     components: int
     euler: int
-    solid_euler: int
+    solid_euler: int | None  # None: a pinched solid (its boundary's formula does not apply)
     valid: bool
     free_off_boundary: float  # largest distance of a free (1-face) edge from the boundary
     free_unnamed: int  # free edges neither a rim nor a skeletal edge
@@ -447,7 +447,7 @@ class Report:
             out.append(f"completeness {rel(self.completeness):.2e} diag > tol")
         if self.components != 1:
             out.append(f"{self.components} connected components")
-        if self.euler != self.solid_euler:
+        if self.solid_euler is not None and self.euler != self.solid_euler:
             out.append(f"Euler characteristic {self.euler} != solid's {self.solid_euler}")
         if not self.valid:
             out.append("BRepCheck_Analyzer: compound not valid")
@@ -550,7 +550,7 @@ def check(
         completeness=float(np.max(cmp_, initial=0.0)),
         components=n_comp,
         euler=chi,
-        solid_euler=O.solid_euler(solid),
+        solid_euler=_solid_euler(solid),
         valid=bool(BRepCheck_Analyzer(comp).IsValid()),
         free_off_boundary=free_off,
         free_unnamed=unnamed,
@@ -560,6 +560,16 @@ def check(
     )
     rep.seconds["oracle"] = time.perf_counter() - t0
     return rep
+
+
+def _solid_euler(solid: Any) -> int | None:
+    """The solid's Euler characteristic, or None where its boundary is pinched (a profile
+    tangent to its axis at a point, revolved: the boundary's characteristic comes out odd,
+    and the solid's is not half of it)."""
+    try:
+        return O.solid_euler(solid)
+    except ValueError:
+        return None
 
 
 def total_area(shapes: Sequence[Any]) -> float:

@@ -241,13 +241,13 @@ class SolidBoundary:
         self.eta = eta if eta is not None else 1e-8 * self.diag
         self.edge_margin = edge_margin if edge_margin is not None else 1e-3 * self.diag
         tols = [BRep_Tool.Tolerance_s(TopoDS.Vertex_s(v)) for v in _iter(self.solid, TopAbs_VERTEX)]
-        self.class_tol = max(1e-9 * self.diag, *tols)
+        self.class_tol = max([1e-9 * self.diag, *tols])
         #: the B-rep's own tolerance (its largest vertex or edge tolerance): where its
         #: faces and edges are only that close to each other, so is any answer about it
         edge_tols = [
             BRep_Tool.Tolerance_s(TopoDS.Edge_s(e)) for e in _iter(self.solid, TopAbs_EDGE)
         ]
-        self.brep_tol = max(0.0, *tols, *edge_tols)
+        self.brep_tol = max([0.0, *tols, *edge_tols])
         self._dss = ShapeDistance(self.shell)
         self._build_extrema()
         self._classifier = BRepClass3d_SolidClassifier(self.solid)
@@ -349,7 +349,12 @@ class SolidBoundary:
                 j = self._face_map.FindIndex(f) - 1
                 uv = BRepAdaptor_Curve2d(edge, self.faces[j]).Value(t)
                 props = BRepLProp_SLProps(self._surf[j], uv.X(), uv.Y(), 1, 1e-12)
+                if not props.IsNormalDefined():  # a pole (a profile tangent to its axis)
+                    bis[:] = np.nan
+                    break
                 bis += self._inward[j] * _xyz(props.Normal())
+            if not np.all(np.isfinite(bis)):
+                continue
             if np.linalg.norm(bis) < 1e-9:
                 continue  # a knife edge: no bisector
             y = _xyz(c.Value(t)) + h * bis / np.linalg.norm(bis)

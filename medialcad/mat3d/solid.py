@@ -27,6 +27,26 @@ def _solid_diag(reading: Extrusion | Revolution) -> float:
     return solid_diagonal(reading)
 
 
+def _refuse_pinched_slice(reading: Revolution, within: float) -> None:
+    """A partial revolution whose profile is tangent to its axis at a point (a pinched
+    pie slice: the caps meet only there) is refused. Its level curve ``d = x sin(Theta/2)``
+    runs into the pinch with a cusp, and the slices of a disk tangent to its axis came
+    out 0.34-0.49 diag unsound. A full turn of such a profile, a vertex of it on the axis,
+    and a profile along its axis are answered."""
+    from medialcad.occ.recognize import tangent_axis_points
+
+    if reading.touches_axis:
+        return
+    pts = tangent_axis_points(reading, within)
+    if pts:
+        p = pts[0]
+        raise UnsupportedSolidError(
+            "a partial revolution whose profile is tangent to its axis at a point "
+            f"({p[0]:.6g}, {p[1]:.6g}, {p[2]:.6g}; the solid is pinched there) is not "
+            "supported"
+        )
+
+
 def medial_axis_of(
     reading: Extrusion | Revolution, tol: float | None, timings: dict[str, float]
 ) -> MedialAxis3D:
@@ -35,6 +55,8 @@ def medial_axis_of(
 
     diag = _solid_diag(reading)
     tol_abs = tol if tol is not None else 1e-5 * diag
+    if isinstance(reading, Revolution) and not reading.full:
+        _refuse_pinched_slice(reading, max(tol_abs, 10.0 * reading.brep_tolerance))
     t0 = time.perf_counter()
     mat2d = medial_axis_2d(reading.profile, tol=tol_abs)
     timings["mat2d"] = time.perf_counter() - t0

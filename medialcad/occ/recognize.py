@@ -67,7 +67,7 @@ from medialcad.errors import (
     OCCError,
 )
 from medialcad.frame import Frame
-from medialcad.occ.io import occ_guard
+from medialcad.occ.io import is_occ_exception, occ_guard
 from medialcad.occ.meridian import exact_meridian
 from medialcad.occ.shapes import as_topods, compound, edges, faces, solids_or_shells, wires
 from medialcad.recognition import Extrusion, Revolution, SolidKind
@@ -574,7 +574,11 @@ def _volume(shape: TopoDS_Shape, swept_faces: bool = False) -> float:
     B-spline (4% to 10% off on the periodic-profile fixtures), or offset surfaces (2% off
     on an offset blob prism): integrate a NURBS copy."""
     if swept_faces:
-        shape = BRepBuilderAPI_NurbsConvert(shape, True).Shape()
+        try:
+            shape = BRepBuilderAPI_NurbsConvert(shape, True).Shape()
+        except Exception as err:  # the conversion refuses some degenerate surfaces (a
+            if not is_occ_exception(err):  # circle revolved about a tangent axis: "V
+                raise  # parameters out of range"): integrate the surfaces as they are
     props = GProp_GProps()
     BRepGProp.VolumeProperties_s(shape, props, 1e-9, False)
     return abs(float(props.Mass()))
@@ -832,6 +836,48 @@ def _axis_edges(profile: TopoDS_Face, frame: Frame, within: float) -> list[Float
         x = (pts - frame.origin) @ frame.xdir
         if float(np.abs(x).max()) < within:
             out.append(pts)
+    return out
+
+
+def tangent_axis_points(reading: Revolution, within: float) -> list[FloatArray]:
+    """Where the profile of ``reading`` touches its axis (within ``within``) running along
+    it: a curve tangent to the axis there, the solid pinched to a point (a circle tangent
+    to its axis revolved is a horn torus). A vertex where the profile's edges leave the
+    axis at an angle, and edges along the axis, are not such points."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from scipy.optimize import minimize_scalar
+
+    f = reading.frame
+    out = []
+    for e in edges(reading.profile):
+        if BRep_Tool.Degenerated_s(e):
+            continue
+        with occ_guard("reading the profile's edges"):
+            c = BRepAdaptor_Curve(e)
+            t0, t1 = c.FirstParameter(), c.LastParameter()
+
+            def x(t: float, c: Any = c) -> float:
+                return abs(float((_xyz(c.Value(float(t))) - f.origin) @ f.xdir))
+
+            ts = np.linspace(t0, t1, 65)
+            xs = np.array([x(t) for t in ts])
+            if float(xs.max()) <= within:
+                continue  # along the axis
+            k = int(np.argmin(xs))
+            lo, hi = ts[max(k - 1, 0)], ts[min(k + 1, len(ts) - 1)]
+            got = minimize_scalar(x, bounds=(lo, hi), method="bounded")
+            for t in (float(got.x), t0, t1):
+                if x(t) > within:
+                    continue
+                p, v = gp_Pnt(), gp_Vec()
+                c.D1(float(t), p, v)
+                d = _xyz(v)
+                n = float(np.linalg.norm(d))
+                # tangent to the axis there (a vertex where an edge leaves the axis at an
+                # angle is a corner of the section, answered)
+                if n > 0 and abs(float(d @ f.xdir)) <= 1e-2 * n:
+                    out.append(_xyz(p))
+                    break
     return out
 
 
