@@ -326,7 +326,14 @@ class ComplexDistance:
                 if lb[i] > best:
                     break
                 ext = self._extrema(i, is_face)
-                if ext is None:  # too heavy for BRepExtrema: the local projection stands
+                if ext is None:
+                    # too heavy to keep BRepExtrema_ExtPF initialised: one full search (the
+                    # local projection alone, from the nearest of a face's 100 samples,
+                    # stopped 0.52 units off a 250-degree revolved sheet of an ellipse
+                    # whose medial points lie on it to 1e-10)
+                    dss = BRepExtrema_DistShapeShape(vx, shapes[i])
+                    if dss.IsDone():
+                        best = min(best, dss.Value())
                     continue
                 if is_face:
                     ext.Perform(vx, shapes[i])
