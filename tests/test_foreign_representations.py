@@ -20,6 +20,7 @@ completeness, topology, ``BRepCheck``).
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -176,9 +177,11 @@ def test_a_solid_in_another_dialect_is_read_alike_and_its_mat_passes_the_oracles
         b = medialcad.recognize(other)
     except medialcad.InputError as err:
         # (ShapeDivideArea cuts the blob ring into faces of zero width in u, which OCC
-        # throws on: refused, naming the solid's invalidity)
+        # throws on: refused, naming the solid's invalidity; since the volume is integrated
+        # on the faces as they are when OCC cannot convert them to NURBS, the refusal is
+        # the reading's own, "... (and it is not a valid solid: ...)")
         assert not BRepCheck_Analyzer(other).IsValid(), err
-        assert "not valid" in str(err)
+        assert re.search(r"not (a )?valid", str(err)), err
         return
     a = medialcad.recognize(plain)
     assert isinstance(a, KIND[name])
