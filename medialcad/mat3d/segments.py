@@ -190,6 +190,11 @@ def _joint(
     return p, n[0]
 
 
+def _degree(graph: MedialGraph, node: int) -> int:
+    """How many branch ends lie at ``node``."""
+    return sum((b.start == node) + (b.end == node) for b in graph.branches)
+
+
 def _node_end(graph: MedialGraph, node: int | None) -> End:
     """The end of a branch at ``node`` (a closed branch's: its split). A curvature centre
     that more branches end at is a node they pass through (``"pass"``): no skeletal edge
@@ -206,10 +211,8 @@ def _end_kind(graph: MedialGraph, node: int) -> NodeKind:
     """The node's kind as an end of a branch: a "branch point" that ends a single branch
     (a flat arc the 2D engine saw as many footpoints) is an end point, a curvature centre."""
     kind = graph.nodes[node].kind
-    if kind is NodeKind.BRANCH_POINT:
-        degree = sum((b.start == node) + (b.end == node) for b in graph.branches)
-        if degree == 1:
-            return NodeKind.CURVATURE_CENTRE
+    if kind is NodeKind.BRANCH_POINT and _degree(graph, node) == 1:
+        return NodeKind.CURVATURE_CENTRE
     return kind
 
 
@@ -512,10 +515,6 @@ def _fan_segments(
             Segment(-1, w, centre, np.full(m, r), part, part.copy(), -1, -1, end, end, True)
         )
     return segs
-
-
-def _degree(graph: MedialGraph, node: int) -> int:
-    return sum((b.start == node) + (b.end == node) for b in graph.branches)
 
 
 def _contact_fans(graph: MedialGraph, boundary: Boundary, node: int) -> list[Segment]:

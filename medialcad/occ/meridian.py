@@ -322,7 +322,7 @@ def _to_axis(curve: Any, t: float, piece: tuple[float, float], frame: Frame, tol
     pts = [_value(curve, u) for u in np.linspace(piece[0], piece[1], 9)]
     size = max(float(np.linalg.norm(p - pts[0])) for p in pts)
     here = x(t)
-    if span <= 0 or abs(here) > 1e-3 * size or abs(x(0.5 * (piece[0] + piece[1]))) <= tol:
+    if span <= 0 or abs(here) > 1e-3 * size or abs(float(mid @ frame.xdir)) <= tol:
         return t  # far from the axis, or a piece along it
     w = 1e-3 * span
     lo, hi = max(t - w, curve.FirstParameter()), min(t + w, curve.LastParameter())
