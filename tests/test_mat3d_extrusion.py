@@ -741,3 +741,54 @@ def test_a_curvature_centre_two_branches_pass_through_fans_over_both_stretches(
     rep = M.check(solid, result, f"slot out of a bar L={length}", n_complete=100)
     print(rep.line())
     assert not rep.failures(), "; ".join(rep.failures())
+
+
+@pytest.mark.parametrize(
+    ("a", "b", "offset", "factor", "axis", "angle", "shift"),
+    [
+        (
+            3.2822941811772344,
+            3.6710037444806405,
+            -0.2302830728071295,
+            1.8405179225970703,
+            (0.6519409863787777, 0.04144148339492548, 0.902655932505334),
+            288.4870241209305,
+            -4.327125506371331,
+        ),
+        (
+            6.16016391169858,
+            5.911299556748989,
+            -0.29207493670163975,
+            1.0517407565802175,
+            (0.9789858207551021, 0.38702052286287625, -0.24314685775343814),
+            145.81718471493218,
+            19.13096284123793,
+        ),
+    ],
+    ids=["fuzz-1041", "fuzz-44"],
+)
+def test_prism_of_an_offset_ellipse_placed_at_random(
+    a: float,
+    b: float,
+    offset: float,
+    factor: float,
+    axis: tuple[float, float, float],
+    angle: float,
+    shift: float,
+) -> None:
+    """build123d's offset of an ellipse, extruded, turned and moved (two build123d fuzz
+    draws): its edges are offset curves split at the ellipse's vertices, one piece a few
+    1e-5 long. Read through ``GeomAPI.To2d``'s Bezier approximation, the 2D MAT grew a
+    second branch at a curvature maximum: 4 free edges 8.75e-2 diag off the boundary, and
+    3.6e-3 diag unsound."""
+    import build123d as bd
+
+    sketch = bd.offset(bd.Ellipse(a / 2, b / 2), offset, kind=bd.Kind.ARC)
+    face = sketch.faces()[0]
+    solid = bd.extrude(face, factor * face.bounding_box().diagonal).solids()[0]
+    solid = solid.rotate(bd.Axis((0, 0, 0), axis), angle).translate((shift,) * 3)
+    result = M.extrusion_mat(solid.wrapped)
+    assert result.counts()["branches"] == 1
+    rep = M.check(solid.wrapped, result, f"offset ellipse prism {a:.2f}x{b:.2f}", n_complete=100)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())

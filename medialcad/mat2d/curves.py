@@ -12,10 +12,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import BSpline
 
-__all__ = ["CircleCurve", "Curve", "EllipseCurve", "LineCurve", "NurbsCurve"]
+__all__ = ["CircleCurve", "Curve", "EllipseCurve", "LineCurve", "NurbsCurve", "OffsetCurve"]
 
 FloatArray = NDArray[np.float64]
 Derivs = tuple[FloatArray, FloatArray, FloatArray]
+Derivs3 = tuple[FloatArray, FloatArray, FloatArray, FloatArray]
 
 
 class Curve:
@@ -23,6 +24,10 @@ class Curve:
 
     def derivs(self, t: ArrayLike) -> Derivs:  # pragma: no cover - abstract
         raise NotImplementedError
+
+    def derivs3(self, t: ArrayLike) -> Derivs3:
+        """``(point, first, second, third)``: what an offset of the curve needs."""
+        raise NotImplementedError(f"{type(self).__name__} has no third derivative")
 
     def point(self, t: ArrayLike) -> FloatArray:
         return self.derivs(t)[0]
@@ -43,6 +48,10 @@ class LineCurve(Curve):
         p = self.origin + tt * self.direction
         d1 = np.broadcast_to(self.direction, p.shape).copy()
         return p, d1, np.zeros_like(p)
+
+    def derivs3(self, t: ArrayLike) -> Derivs3:
+        p, d1, d2 = self.derivs(t)
+        return p, d1, d2, d2.copy()
 
     def point(self, t: ArrayLike) -> FloatArray:
         tt = np.atleast_1d(np.asarray(t, dtype=float))[:, None]
@@ -69,6 +78,10 @@ class CircleCurve(Curve):
         d2 = -r * (c * self.xaxis + s * self.yaxis)
         return p, d1, d2
 
+    def derivs3(self, t: ArrayLike) -> Derivs3:
+        p, d1, d2 = self.derivs(t)
+        return p, d1, d2, -d1
+
     @property
     def constant_curvature(self) -> float | None:
         return 1.0 / self.radius
@@ -91,6 +104,10 @@ class EllipseCurve(Curve):
         d2 = -c * ax - s * ay
         return p, d1, d2
 
+    def derivs3(self, t: ArrayLike) -> Derivs3:
+        p, d1, d2 = self.derivs(t)
+        return p, d1, d2, -d1
+
 
 @dataclass(frozen=True)
 class NurbsCurve(Curve):
@@ -111,7 +128,8 @@ class NurbsCurve(Curve):
             object.__setattr__(self, "_cache", cache)
         return cache
 
-    def derivs(self, t: ArrayLike) -> Derivs:
+    def _homogeneous(self, t: ArrayLike, n: int) -> list[FloatArray]:
+        """The weighted poles' spline and its first ``n`` derivatives at ``t``."""
         tt = np.atleast_1d(np.asarray(t, dtype=float))
         if self.period is not None:
             lo = self.knots[self.degree]
@@ -120,10 +138,57 @@ class NurbsCurve(Curve):
         # derivatives evaluated directly (one-sided at a knot of high multiplicity:
         # BSpline.derivative refuses a C1 knot of a cubic)
         h = a(tt)
-        h1 = a(tt, nu=1) if self.degree >= 1 else np.zeros_like(h)
-        h2 = a(tt, nu=2) if self.degree >= 2 else np.zeros_like(h)
+        return [h] + [
+            a(tt, nu=k) if self.degree >= k else np.zeros_like(h) for k in range(1, n + 1)
+        ]
+
+    def derivs(self, t: ArrayLike) -> Derivs:
+        h, h1, h2 = self._homogeneous(t, 2)
         w, w1, w2 = h[:, 2:3], h1[:, 2:3], h2[:, 2:3]
         p = h[:, :2] / w
         d1 = (h1[:, :2] - w1 * p) / w
         d2 = (h2[:, :2] - 2.0 * w1 * d1 - w2 * p) / w
         return p, d1, d2
+
+    def derivs3(self, t: ArrayLike) -> Derivs3:
+        h, h1, h2, h3 = self._homogeneous(t, 3)
+        w, w1, w2, w3 = h[:, 2:3], h1[:, 2:3], h2[:, 2:3], h3[:, 2:3]
+        p = h[:, :2] / w
+        d1 = (h1[:, :2] - w1 * p) / w
+        d2 = (h2[:, :2] - 2.0 * w1 * d1 - w2 * p) / w
+        d3 = (h3[:, :2] - 3.0 * w1 * d2 - 3.0 * w2 * d1 - w3 * p) / w
+        return p, d1, d2, d3
+
+
+@dataclass(frozen=True)
+class OffsetCurve(Curve):
+    """OCC's ``Geom2d_OffsetCurve``: ``basis + offset * N``, ``N`` the basis's unit tangent
+    turned clockwise (``(ty, -tx)``), on the basis's parameter; evaluated exactly from the
+    basis's first three derivatives (the offset's second derivative needs the third)."""
+
+    basis: Curve
+    offset: float
+
+    @property
+    def period(self) -> float | None:
+        """The basis's period (a whole circle or ellipse: 2 pi), if it has one."""
+        if isinstance(self.basis, (CircleCurve, EllipseCurve)):
+            return 2.0 * np.pi
+        return getattr(self.basis, "period", None)
+
+    def derivs(self, t: ArrayLike) -> Derivs:
+        b, b1, b2, b3 = self.basis.derivs3(t)
+        s2 = np.einsum("ij,ij->i", b1, b1)[:, None]
+        s = np.sqrt(s2)
+        u = b1 / s  # unit tangent
+        ds = np.einsum("ij,ij->i", b1, b2)[:, None] / s  # |b'|'
+        dds = (np.einsum("ij,ij->i", b2, b2)[:, None] + np.einsum("ij,ij->i", b1, b3)[:, None]) / s
+        dds = dds - ds * ds / s
+        u1 = b2 / s - b1 * ds / s2
+        u2 = b3 / s - 2.0 * b2 * ds / s2 - b1 * dds / s2 + 2.0 * b1 * ds * ds / (s2 * s)
+        d = self.offset
+
+        def turn(v: FloatArray) -> FloatArray:
+            return np.column_stack([v[:, 1], -v[:, 0]])
+
+        return b + d * turn(u), b1 + d * turn(u1), b2 + d * turn(u2)

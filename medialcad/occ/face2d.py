@@ -20,7 +20,7 @@ from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepCheck import BRepCheck_Analyzer, BRepCheck_ListOfStatus
 from OCP.BRepTools import BRepTools_WireExplorer
-from OCP.Geom import Geom_Line
+from OCP.Geom import Geom_Curve, Geom_Line, Geom_OffsetCurve, Geom_TrimmedCurve
 from OCP.Geom2d import (
     Geom2d_BSplineCurve,
     Geom2d_Circle,
@@ -50,7 +50,14 @@ from medialcad.errors import (
 )
 from medialcad.frame import Frame
 from medialcad.mat2d.boundary import EdgePiece
-from medialcad.mat2d.curves import CircleCurve, Curve, EllipseCurve, LineCurve, NurbsCurve
+from medialcad.mat2d.curves import (
+    CircleCurve,
+    Curve,
+    EllipseCurve,
+    LineCurve,
+    NurbsCurve,
+    OffsetCurve,
+)
 from medialcad.occ.io import is_occ_exception, occ_guard
 from medialcad.occ.shapes import single_face
 
@@ -170,6 +177,10 @@ def _curve_to_numpy(c: Geom2d_Curve, first: float, last: float, approx_tol: floa
             # exact: offsets of lines and circles are lines and circles
             base = _curve_to_numpy(basis, first, last, approx_tol)
             return _offset_exact(base, c.Offset())
+        if not isinstance(basis, Geom2d_OffsetCurve):
+            # evaluated exactly from the basis's derivatives (an approximation of a
+            # piece a few 1e-6 long at an ellipse's vertex misplaced its curvature maximum)
+            return OffsetCurve(_curve_to_numpy(basis, first, last, approx_tol), c.Offset())
     if isinstance(c, Geom2d_BSplineCurve):
         return _nurbs(c, trimmed=False, first=first, last=last)
     trimmed = Geom2d_TrimmedCurve(c, first, last)
@@ -185,6 +196,23 @@ def _curve_to_numpy(c: Geom2d_Curve, first: float, last: float, approx_tol: floa
     if not approx.HasResult():
         raise UnsupportedGeometryError(f"cannot approximate a {type(c).__name__} edge")
     return _nurbs(approx.Curve(), trimmed=True, first=first, last=last)
+
+
+def _to_2d(c3: Geom_Curve, local: gp_Pln, zdir: np.ndarray) -> Geom2d_Curve | None:
+    """The edge's curve in the plane. A 3D offset curve offset along the plane's normal
+    stays an offset curve of its basis's image (``GeomAPI.To2d`` approximates it by
+    Bezier pieces, whose 1e-9 errors misplace a curvature maximum)."""
+    basis = c3
+    while isinstance(basis, Geom_TrimmedCurve):
+        basis = basis.BasisCurve()
+    if isinstance(basis, Geom_OffsetCurve):
+        v = _vec(basis.Direction())
+        if np.linalg.norm(np.cross(v, zdir)) < 1e-12:
+            inner = _to_2d(basis.BasisCurve(), local, zdir)
+            if inner is not None:
+                # 3D: basis + d (T x V); 2D: basis + d (T x Z)
+                return Geom2d_OffsetCurve(inner, basis.Offset() * float(np.sign(v @ zdir)))
+    return GeomAPI.To2d_s(c3, local)
 
 
 def _pieces(
@@ -256,6 +284,10 @@ class _Reparam(Curve):
     def derivs(self, t: Any) -> Any:
         p, d1, d2 = self.inner.derivs(self.a + self.b * np.asarray(t, dtype=float))
         return p, d1 * self.b, d2 * self.b**2
+
+    def derivs3(self, t: Any) -> Any:
+        p, d1, d2, d3 = self.inner.derivs3(self.a + self.b * np.asarray(t, dtype=float))
+        return p, d1 * self.b, d2 * self.b**2, d3 * self.b**3
 
 
 def _nurbs(bs: Geom2d_BSplineCurve, *, trimmed: bool, first: float, last: float) -> Curve:
@@ -347,7 +379,7 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
                         raise NonPlanarFaceError(
                             f"edge {len(edges)} leaves the face's plane by {off:.3g}"
                         )
-                    c2 = GeomAPI.To2d_s(c3, local)
+                    c2 = _to_2d(c3, local, zdir)
                     if c2 is None:
                         raise UnsupportedGeometryError("an edge cannot be mapped to the plane")
                     forward = it.Orientation() != TopAbs_REVERSED
