@@ -642,14 +642,16 @@ class SolidBoundary:
 
     def side(self, p: ArrayLike, foot: FloatArray, face: int | None, uv: Any) -> bool:
         """Whether ``p`` is in the closed solid, given its nearest boundary point: when that is
-        inside a face, ``p - foot`` is along the normal there and its sign decides (no solid
-        classification, ~4 ms on a B-spline face); otherwise :meth:`inside` decides."""
+        inside a face, ``p - foot`` along the inward normal there says inside (no solid
+        classification, ~4 ms on a B-spline face); otherwise, and for an apparent outside,
+        :meth:`inside` decides (a foot at a reflex cusp edge, where two faces meet with
+        opposite normals, reads outside from one of them)."""
         x = np.asarray(p, dtype=float)
         if face is not None and uv is not None:
             n = self.inward_normal(face, uv)
             v = x - foot
-            if n is not None and abs(float(v @ n)) > 0.9 * float(np.linalg.norm(v)):
-                return float(v @ n) > 0
+            if n is not None and float(v @ n) > 0.9 * float(np.linalg.norm(v)):
+                return True
         if self.inside([x])[0]:
             return True
         # OCCT's classifier can answer OUT for a point well inside a B-spline solid (its

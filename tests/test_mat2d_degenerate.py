@@ -4,6 +4,7 @@ B-spline ends with a zero derivative, bad tolerances. Each is checked by the ora
 from __future__ import annotations
 
 import itertools
+import math
 from collections import Counter
 from typing import Any
 
@@ -471,3 +472,59 @@ def test_a_full_circle_written_as_a_nurbs_has_the_circles_mat(
     assert np.allclose(mat.nodes[0].point, [1, 2, 0], atol=1e-9)
     assert abs(mat.nodes[0].radius - 10.0) < 1e-9
     assert 0 < solved[0] < 5000
+
+
+def _cusped_notch(fillet: float = 1.0) -> Any:
+    """A 6 x 4 rectangle whose bottom edge is notched by two disks touching at ``(0, f)``
+    (the meridian section of a rounded rectangle revolved about its side): the arcs meet
+    there tangent to each other, a reflex cusp."""
+    import build123d as bd
+
+    f = fillet
+    with bd.BuildSketch() as sk:
+        with bd.Locations((0, 2)):
+            bd.Rectangle(6, 4)
+        with bd.Locations((0, f / 2)):
+            bd.Rectangle(2 * f, f, mode=bd.Mode.SUBTRACT)
+        with bd.Locations((f, f), (-f, f)):
+            bd.Circle(f)
+    return sk.sketch.faces()[0].wrapped
+
+
+@pytest.mark.parametrize("fillet", [1.0, 0.3])
+def test_a_reflex_cusp_is_a_vertex_with_a_half_turn_of_normals(fillet: float) -> None:
+    """Two convex arcs leaving a point in one direction with the face on both sides: the
+    cusp is reflex (its normals sweep the half plane above it). The disks above it touch
+    only it and the top edge, so the axis crosses ``x = 0`` at ``y = (4 + f) / 2`` and
+    never reaches the cusp."""
+    face = _cusped_notch(fillet)
+    mat = medialcad.medial_axis_2d(face)
+    assert mat.boundary is not None
+    cusps = [c for c in mat.boundary.corners if c.turn <= -np.pi + 1e-9]
+    assert len(cusps) == 1
+    np.testing.assert_allclose(
+        mat.frame.to_3d(cusps[0].point[None, :])[0], [0, fillet, 0], atol=1e-9
+    )
+    assert all(np.hypot(n.point[0], n.point[1] - fillet) > 0.1 for n in mat.nodes)
+    pts, radius = mat.sample(400)
+    on_axis = np.abs(pts[:, 0]) < 2e-2
+    assert np.any(on_axis)
+    y = (4.0 + fillet) / 2.0
+    np.testing.assert_allclose(pts[on_axis, 1], y, atol=2e-3)
+    np.testing.assert_allclose(radius[on_axis], y - fillet, atol=2e-3)
+    _check_oracles(face, mat)
+
+
+def test_a_convex_cusp_is_refused() -> None:
+    """A wedge of zero angle (a line tangent to an arc at its end, the face between
+    them) has no medial axis at its tip: refused as degenerate."""
+    import build123d as bd
+
+    s = math.sqrt(0.5)
+    with bd.BuildLine() as ln:
+        bd.Line((0, 0), (1, 0))
+        bd.Line((1, 0), (1, 1))
+        bd.ThreePointArc((1, 1), (s, 1 - s), (0, 0))
+    face = bd.Face(bd.Wire(ln.edges())).wrapped
+    with pytest.raises(medialcad.DegenerateFaceError, match="cusp"):
+        medialcad.medial_axis_2d(face)

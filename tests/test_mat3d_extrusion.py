@@ -792,3 +792,25 @@ def test_prism_of_an_offset_ellipse_placed_at_random(
     rep = M.check(solid.wrapped, result, f"offset ellipse prism {a:.2f}x{b:.2f}", n_complete=100)
     print(rep.line())
     assert not rep.failures(), "; ".join(rep.failures())
+
+
+@pytest.mark.parametrize("length", [1.0, 10.0])
+def test_prism_of_a_profile_with_a_reflex_cusp(length: float) -> None:
+    """A rectangle notched by two disks touching at a point (a reflex cusp, once refused
+    as "cusp (zero angle)"): the cusp's edge is a reflex edge whose normals sweep a half
+    turn. (The oracle read the disks' axes, equidistant from the whole of each disk's
+    arc, as outside: its nearest point, the cusp edge, had the other face's normal.)"""
+    import build123d as bd
+
+    with bd.BuildSketch() as sk:
+        with bd.Locations((0, 2)):
+            bd.Rectangle(6, 4)
+        with bd.Locations((0, 0.5)):
+            bd.Rectangle(2, 1, mode=bd.Mode.SUBTRACT)
+        with bd.Locations((1, 1), (-1, 1)):
+            bd.Circle(1)
+    solid = M.prism(sk.sketch.faces()[0].wrapped, length)
+    result = M.extrusion_mat(solid)
+    rep = M.check(solid, result, f"cusped notch prism L={length}", n_complete=100)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())

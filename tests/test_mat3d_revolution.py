@@ -1867,3 +1867,84 @@ def test_a_partial_turn_of_a_profile_tangent_to_its_axis_is_refused(angle: float
     result = medialcad.medial_axis(solid)
     rep = M.check(solid, result, "triangle with a vertex on its axis", n_complete=60)
     assert not rep.failures(), "; ".join(rep.failures())
+
+
+def _rounded_rectangle_on_its_axis(fillet: float) -> Any:
+    """A 3 x 4 rectangle with every corner rounded, one long side on the axis (x = 0)."""
+    from build123d import Rectangle
+    from build123d import fillet as round_corners
+
+    face = round_corners(Rectangle(3.0, 4.0).vertices(), fillet).faces()[0]
+    return face.translate((1.5, 0.0, 0.0)).wrapped
+
+
+@pytest.mark.parametrize("fillet", [0.5, 1.0, 1.4999])
+def test_a_full_turn_of_a_rounded_rectangle_about_its_side(fillet: float) -> None:
+    """The fillets at the axis leave it tangentially: mirrored across the axis they meet
+    in reflex cusps (the solid's dimples at its poles). Refused before ("cusp (zero
+    angle)"); the cusps are reflex vertices whose disks touch only them, the MAT never
+    reaches them, and every oracle passes."""
+    import medialcad
+    from tests import _mat3d as M
+
+    solid = revolve(_rounded_rectangle_on_its_axis(fillet))
+    result = medialcad.medial_axis(solid)
+    assert isinstance(result.recognition, Revolution) and result.recognition.full
+    from medialcad.occ.recognize import mirrored_section
+
+    section = medialcad.medial_axis_2d(mirrored_section(result.recognition))
+    cusps = [c for c in section.boundary.corners if c.turn <= -math.pi + 1e-9]
+    assert len(cusps) == 2
+    rep = M.check(solid, result, f"rounded rectangle f={fillet} about its side", n_complete=100)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())
+
+
+def test_a_rounded_rectangle_about_its_side_whose_section_occ_cannot_cut_is_refused() -> None:
+    """Placed at some angles (21 of 30 random placements), OCC's section of the dimpled
+    poles' faces comes out empty: refused with a clear message, not answered wrong."""
+    import medialcad
+    from medialcad.errors import NotExtrusionOrRevolutionError
+
+    solid = revolve(_rounded_rectangle_on_its_axis(0.5), placement=F.random_placement(1, 50.0))
+    with pytest.raises(NotExtrusionOrRevolutionError, match="meridian section"):
+        medialcad.medial_axis(solid)
+
+
+@pytest.mark.parametrize("angle", [120.0, 250.0])
+def test_a_partial_turn_of_a_rounded_rectangle_about_its_side_is_refused(angle: float) -> None:
+    """Its pie slices are refused with a clear message (160 degrees came out 1.2 tol
+    unsound, 200 to 300 degrees with free edges 0.05 to 0.12 diag off the boundary)."""
+    import medialcad
+    from medialcad.errors import UnsupportedSolidError
+
+    solid = revolve(_rounded_rectangle_on_its_axis(1.0), math.radians(angle))
+    with pytest.raises(UnsupportedSolidError, match="leaves its axis tangentially"):
+        medialcad.medial_axis(solid)
+
+
+@pytest.mark.parametrize(("shift", "angle"), [(5.0, 120.0), (5.0, 360.0), (3.0, 250.0)])
+def test_revolution_of_a_profile_with_a_reflex_cusp_off_its_axis(
+    shift: float, angle: float
+) -> None:
+    """A rectangle notched by two disks touching at a point, off the axis or along it by
+    its far side (a pie slice): the cusp is a reflex vertex of the profile, answered at
+    any angle (only a cusp on the axis refuses a partial turn)."""
+    import build123d as bd
+
+    import medialcad
+    from tests import _mat3d as M
+
+    with bd.BuildSketch() as sk:
+        with bd.Locations((0, 2)):
+            bd.Rectangle(6, 4)
+        with bd.Locations((0, 0.5)):
+            bd.Rectangle(2, 1, mode=bd.Mode.SUBTRACT)
+        with bd.Locations((1, 1), (-1, 1)):
+            bd.Circle(1)
+    face = sk.sketch.faces()[0].translate((shift, 0, 0)).wrapped
+    solid = revolve(face, math.radians(angle))
+    result = medialcad.medial_axis(solid)
+    rep = M.check(solid, result, f"cusped notch x+{shift} {angle} deg", n_complete=60)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())

@@ -153,6 +153,33 @@ def _tangent(piece: EdgePiece, at_end: bool) -> FloatArray:
     return np.asarray(v / np.linalg.norm(v))
 
 
+def _curvature(piece: EdgePiece, at_end: bool) -> float:
+    """Signed curvature (> 0 turning left, along the loop) at an end of ``piece``."""
+    if isinstance(piece.curve, LineCurve):
+        return 0.0
+    lo, hi = piece.t0, piece.t1
+    t = hi if at_end else lo
+    _, d1, d2 = piece.curve.derivs([t])
+    speed = float(np.linalg.norm(d1[0]))
+    if speed <= 1e-12 * max(abs(hi - lo), 1e-300):
+        _, d1, d2 = piece.curve.derivs([t + 1e-7 * ((lo - hi) if at_end else (hi - lo))])
+        speed = float(np.linalg.norm(d1[0]))
+    sense = 1.0 if hi > lo else -1.0
+    return sense * float(d1[0, 0] * d2[0, 1] - d1[0, 1] * d2[0, 0]) / speed**3
+
+
+def _cusp_turn(a: EdgePiece, b: EdgePiece, diag: float) -> float | None:
+    """The turn at a cusp between ``a`` (arriving) and ``b`` (leaving): ``-pi`` when it
+    is reflex (the face on both sides of the two curves leaving it in one direction:
+    the meridian of a fillet revolved about the edge it rounds), None when it is
+    convex (a wedge of zero angle) or undecided. Both curves leave the cusp along ``u``;
+    at a distance ``x`` along ``u`` they lie ``-ka x^2 / 2`` and ``kb x^2 / 2`` to the
+    left of it (``a`` reversed flips its curvature); the face is left of ``b`` and right
+    of ``a``: a wedge between them when ``ka + kb < 0``, everything but it when > 0."""
+    ka, kb = _curvature(a, True), _curvature(b, False)
+    return -np.pi if (ka + kb) * diag > 1e-6 else None
+
+
 def _turn(ta: FloatArray, tb: FloatArray) -> float:
     """The signed angle from unit tangent ``ta`` to ``tb`` (> 0 turning left)."""
     return float(np.arctan2(ta[0] * tb[1] - ta[1] * tb[0], ta @ tb))
@@ -252,7 +279,10 @@ def build_boundary(
             if abs(turn) <= angle_tol:
                 continue
             if abs(abs(turn) - np.pi) < 1e-9:
-                raise DegenerateFaceError(f"cusp (zero angle) at {vtx} in loop {li}")
+                cusp = _cusp_turn(piece, nxt, diag)
+                if cusp is None:
+                    raise DegenerateFaceError(f"cusp (zero angle) at {vtx} in loop {li}")
+                turn = cusp
             corners.append(Corner(li, s, vtx, turn))
             if turn < 0:  # reflex: the normal sweeps clockwise from na to nb
                 na = np.array([-ta[1], ta[0]])
