@@ -42,14 +42,14 @@ from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.GProp import GProp_GProps
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
-from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex
 
 from medialcad.frame import Frame
 from medialcad.occ.io import is_occ_exception
 
-__all__ = ["exact_meridian"]
+__all__ = ["exact_meridian", "iso_section"]
 
 FloatArray = NDArray[np.float64]
 log = logging.getLogger(__name__)
@@ -449,3 +449,149 @@ def exact_meridian(
         log.debug("exact meridian failed: %s", err)
         return section
     return face
+
+
+def _swept_angle_param(s: Any, u: float, v: float, frame: Frame) -> float:
+    """The first parameter of a swept surface at the angle of ``frame``'s half-plane."""
+    a0 = _angle(s, u, v, frame)
+    turn = math.remainder(_angle(s, u + 1e-3, v, frame) - a0, 2 * math.pi)
+    sign = 1.0 if turn > 0 else -1.0
+    for _ in range(3):
+        u -= sign * _angle(s, u, v, frame)
+    return u
+
+
+def _within(u: float, u0: float, u1: float) -> bool:
+    span = u1 - u0
+    return span >= 2 * math.pi - 1e-9 or (u - u0) % (2 * math.pi) <= span + 1e-9
+
+
+def _meridian_edges(f: TopoDS_Face, frame: Frame, tol: float) -> list[TopoDS_Edge] | None:
+    """The face's meridians in the plane of ``frame`` (both half-planes), or None when the
+    face is no surface swept about the axis nor a plane across it."""
+    from OCP.Geom import Geom_Plane
+
+    s = BRep_Tool.Surface_s(f)
+    if isinstance(s, Geom_RectangularTrimmedSurface):
+        s = s.BasisSurface()
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(f)
+    if isinstance(s, Geom_Plane):
+        n = _xyz(s.Axis().Direction())
+        if np.linalg.norm(np.cross(n, frame.ydir)) > 1e-9:
+            return None
+        pts = []
+        ex = TopExp_Explorer(f, TopAbs_EDGE)
+        while ex.More():
+            e = TopoDS.Edge_s(ex.Current())
+            c = BRep_Tool.Curve_s(e, 0.0, 0.0)
+            if c is not None:
+                a, b = BRep_Tool.Range_s(e)
+                pts += [_value(c, t) for t in np.linspace(a, b, 9)]
+            ex.Next()
+        if not pts:
+            return None
+        q = np.array(pts) - frame.origin
+        y = float(np.median(q @ frame.ydir))
+        r = np.linalg.norm(q - np.outer(q @ frame.ydir, frame.ydir), axis=1)
+        n_wires = 0
+        wx = TopExp_Explorer(f, TopAbs_WIRE)
+        while wx.More():
+            n_wires, _ = n_wires + 1, wx.Next()
+        r_out = float(r.max())
+        r_in = float(r.min()) if n_wires > 1 else 0.0
+        at = frame.origin + y * frame.ydir
+        if r_in <= tol:  # a disk: one segment across the axis
+            spans = [(-r_out, r_out)]
+        else:
+            spans = [(r_in, r_out), (-r_out, -r_in)]
+        out = []
+        for a, b in spans:
+            p0, p1 = at + a * frame.xdir, at + b * frame.xdir
+            out.append(BRepBuilderAPI_MakeEdge(gp_Pnt(*p0), gp_Pnt(*p1)).Edge())
+        return out
+    if not isinstance(s, _SWEPT):
+        return None
+    ax = s.Axis()
+    d = _xyz(ax.Direction())
+    off = _xyz(ax.Location()) - frame.origin
+    if (
+        np.linalg.norm(np.cross(d, frame.ydir)) > 1e-9
+        or np.linalg.norm(off - (off @ frame.ydir) * frame.ydir) > tol
+    ):
+        return None
+    out = []
+    for side in (frame, Frame(frame.origin, -frame.xdir, frame.ydir)):
+        u = _swept_angle_param(s, 0.5 * (u0 + u1), 0.5 * (v0 + v1), side)
+        if not _within(u, u0, u1):
+            continue
+        out.append(BRepBuilderAPI_MakeEdge(s.UIso(u), v0, v1).Edge())
+    return out
+
+
+def iso_section(
+    solid_faces: list[TopoDS_Face], frame: Frame, size: float, tol: float
+) -> TopoDS_Face | None:
+    """The meridian section of a full revolution in the half-plane ``x >= 0`` of
+    ``frame``, built from its faces' own meridians (iso-curves of the surfaces swept about
+    the axis, radial segments of the planes across it) on both sides of the axis, then
+    cut by a 2D Boolean of two faces in one plane. For when OCC's common of the solid and
+    the half-plane comes out empty (a rounded rectangle revolved about its side: its
+    poles are dimples of horn-torus faces). None when a face is of another kind or the
+    meridians do not close."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
+    from OCP.gp import gp_Ax3, gp_Dir, gp_Pln
+    from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
+    from OCP.TopTools import TopTools_HSequenceOfShape
+
+    try:
+        seq = TopTools_HSequenceOfShape()
+        for f in solid_faces:
+            got = _meridian_edges(f, frame, tol)
+            if got is None:
+                return None
+            for e in got:
+                seq.Append(e)
+        if seq.Length() == 0:
+            return None
+        joined = TopTools_HSequenceOfShape()
+        ShapeAnalysis_FreeBounds.ConnectEdgesToWires_s(seq, tol, False, joined)
+        pln = gp_Pln(gp_Ax3(gp_Pnt(*frame.origin), gp_Dir(*frame.zdir), gp_Dir(*frame.xdir)))
+        loops = []
+        for i in range(1, joined.Length() + 1):
+            w = TopoDS.Wire_s(joined.Value(i))
+            mk = BRepBuilderAPI_MakeFace(pln, w, True)
+            if not BRep_Tool.IsClosed_s(w) or not mk.IsDone():
+                return None
+            loops.append((abs(_area(mk.Face())), w))
+        loops.sort(key=lambda a: -a[0])
+        mk = BRepBuilderAPI_MakeFace(pln, loops[0][1], True)
+        for _, w in loops[1:]:
+            mk.Add(w)
+        if not mk.IsDone():
+            return None
+        from OCP.ShapeFix import ShapeFix_Face
+
+        fix = ShapeFix_Face(mk.Face())
+        fix.Perform()
+        whole = fix.Result()
+        if not BRepCheck_Analyzer(whole).IsValid():
+            return None
+        half = BRepBuilderAPI_MakeFace(pln, 0.0, 2 * size, -2 * size, 2 * size).Face()
+        common = BRepAlgoAPI_Common(whole, half)
+        if not common.IsDone():
+            return None
+        from OCP.TopAbs import TopAbs_FACE
+
+        ex = TopExp_Explorer(common.Shape(), TopAbs_FACE)
+        faces = []
+        while ex.More():
+            faces.append(TopoDS.Face_s(ex.Current()))
+            ex.Next()
+        if len(faces) != 1 or not BRepCheck_Analyzer(faces[0]).IsValid():
+            return None
+        return faces[0]
+    except Exception as err:  # an OCC failure: no section from the meridians
+        if not is_occ_exception(err):
+            raise
+        log.debug("iso section failed: %s", err)
+        return None

@@ -813,6 +813,15 @@ def _full_section(
         except MedialCadError as err:
             log.debug("meridian section at %.4f rad failed: %s", phi, err)
             first = first or err
+    # OCC's Boolean failed at every angle: the faces' own meridians
+    from medialcad.occ.meridian import iso_section
+
+    for phi in SECTION_ANGLES:
+        xdir = math.cos(phi) * base + math.sin(phi) * np.cross(d, base)
+        frame = Frame(origin, xdir, d)
+        face = iso_section(faces(solid), frame, size, 1e-7 * size)
+        if face is not None:
+            return frame, face
     assert first is not None
     raise first
 
