@@ -42,7 +42,7 @@ from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.GProp import GProp_GProps
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex
 
@@ -467,7 +467,7 @@ def _within(u: float, u0: float, u1: float) -> bool:
 
 
 def _meridian_edges(f: TopoDS_Face, frame: Frame, tol: float) -> list[TopoDS_Edge] | None:
-    """The face's meridians in the plane of ``frame`` (both half-planes), or None when the
+    """The face's meridians in the half-plane ``x >= 0`` of ``frame``, or None when the
     face is no surface swept about the axis nor a plane across it."""
     from OCP.Geom import Geom_Plane
 
@@ -500,15 +500,8 @@ def _meridian_edges(f: TopoDS_Face, frame: Frame, tol: float) -> list[TopoDS_Edg
         r_out = float(r.max())
         r_in = float(r.min()) if n_wires > 1 else 0.0
         at = frame.origin + y * frame.ydir
-        if r_in <= tol:  # a disk: one segment across the axis
-            spans = [(-r_out, r_out)]
-        else:
-            spans = [(r_in, r_out), (-r_out, -r_in)]
-        out = []
-        for a, b in spans:
-            p0, p1 = at + a * frame.xdir, at + b * frame.xdir
-            out.append(BRepBuilderAPI_MakeEdge(gp_Pnt(*p0), gp_Pnt(*p1)).Edge())
-        return out
+        p0, p1 = at + (r_in if r_in > tol else 0.0) * frame.xdir, at + r_out * frame.xdir
+        return [BRepBuilderAPI_MakeEdge(gp_Pnt(*p0), gp_Pnt(*p1)).Edge()]
     if not isinstance(s, _SWEPT):
         return None
     ax = s.Axis()
@@ -519,40 +512,60 @@ def _meridian_edges(f: TopoDS_Face, frame: Frame, tol: float) -> list[TopoDS_Edg
         or np.linalg.norm(off - (off @ frame.ydir) * frame.ydir) > tol
     ):
         return None
-    out = []
-    for side in (frame, Frame(frame.origin, -frame.xdir, frame.ydir)):
-        u = _swept_angle_param(s, 0.5 * (u0 + u1), 0.5 * (v0 + v1), side)
-        if not _within(u, u0, u1):
-            continue
-        out.append(BRepBuilderAPI_MakeEdge(s.UIso(u), v0, v1).Edge())
-    return out
+    um = 0.5 * (u0 + u1)
+    # the angle is read at the iso's point farthest from the axis (its middle may be on it)
+    vs = np.linspace(v0, v1, 9)
+    pts = np.array([_value(s.UIso(um), v) for v in vs]) - frame.origin
+    radial = pts - np.outer(pts @ frame.ydir, frame.ydir)
+    v_far = float(vs[int(np.argmax(np.linalg.norm(radial, axis=1)))])
+    u = _swept_angle_param(s, um, v_far, frame)
+    if not _within(u, u0, u1):
+        return []
+    return [BRepBuilderAPI_MakeEdge(s.UIso(u), v0, v1).Edge()]
 
 
 def iso_section(
     solid_faces: list[TopoDS_Face], frame: Frame, size: float, tol: float
 ) -> TopoDS_Face | None:
     """The meridian section of a full revolution in the half-plane ``x >= 0`` of
-    ``frame``, built from its faces' own meridians (iso-curves of the surfaces swept about
-    the axis, radial segments of the planes across it) on both sides of the axis, then
-    cut by a 2D Boolean of two faces in one plane. For when OCC's common of the solid and
-    the half-plane comes out empty (a rounded rectangle revolved about its side: its
-    poles are dimples of horn-torus faces). None when a face is of another kind or the
-    meridians do not close."""
-    from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
+    ``frame``, built from its faces' own meridians there (iso-curves of the surfaces swept
+    about the axis, radial segments of the planes across it), the chains that end on the
+    axis closed along it (their ends there, in order along it, pair up). For when OCC's
+    common of the solid and the half-plane comes out empty (a rounded rectangle revolved
+    about its side: its poles are dimples of horn-torus faces). None when a face is of
+    another kind or the meridians do not close into one face."""
     from OCP.gp import gp_Ax3, gp_Dir, gp_Pln
     from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
+    from OCP.ShapeFix import ShapeFix_Face
     from OCP.TopTools import TopTools_HSequenceOfShape
 
     try:
         seq = TopTools_HSequenceOfShape()
+        ends: list[FloatArray] = []
         for f in solid_faces:
             got = _meridian_edges(f, frame, tol)
             if got is None:
                 return None
             for e in got:
                 seq.Append(e)
+                c = BRep_Tool.Curve_s(e, 0.0, 0.0)
+                a, b = BRep_Tool.Range_s(e)
+                ends += [_value(c, a), _value(c, b)]
         if seq.Length() == 0:
             return None
+        # free ends on the axis (an end no other edge shares), in order along it
+        pts = np.array(ends)
+        free = []
+        for i, p in enumerate(pts):
+            near = np.linalg.norm(pts - p, axis=1) <= tol
+            on_axis = abs(float((p - frame.origin) @ frame.xdir)) <= tol
+            if near.sum() == 1 and on_axis:
+                free.append((float((p - frame.origin) @ frame.ydir), i))
+        if len(free) % 2:
+            return None
+        free.sort()
+        for (_, i), (_, j) in zip(free[::2], free[1::2], strict=True):
+            seq.Append(BRepBuilderAPI_MakeEdge(gp_Pnt(*pts[i]), gp_Pnt(*pts[j])).Edge())
         joined = TopTools_HSequenceOfShape()
         ShapeAnalysis_FreeBounds.ConnectEdgesToWires_s(seq, tol, False, joined)
         pln = gp_Pln(gp_Ax3(gp_Pnt(*frame.origin), gp_Dir(*frame.zdir), gp_Dir(*frame.xdir)))
@@ -569,27 +582,15 @@ def iso_section(
             mk.Add(w)
         if not mk.IsDone():
             return None
-        from OCP.ShapeFix import ShapeFix_Face
-
         fix = ShapeFix_Face(mk.Face())
         fix.Perform()
-        whole = fix.Result()
-        if not BRepCheck_Analyzer(whole).IsValid():
+        face = fix.Result()
+        if face.ShapeType() != TopAbs_FACE or not BRepCheck_Analyzer(face).IsValid():
             return None
-        half = BRepBuilderAPI_MakeFace(pln, 0.0, 2 * size, -2 * size, 2 * size).Face()
-        common = BRepAlgoAPI_Common(whole, half)
-        if not common.IsDone():
+        want = loops[0][0] - sum(a for a, _ in loops[1:])
+        if abs(_area(TopoDS.Face_s(face)) - want) > 1e-9 * loops[0][0]:
             return None
-        from OCP.TopAbs import TopAbs_FACE
-
-        ex = TopExp_Explorer(common.Shape(), TopAbs_FACE)
-        faces = []
-        while ex.More():
-            faces.append(TopoDS.Face_s(ex.Current()))
-            ex.Next()
-        if len(faces) != 1 or not BRepCheck_Analyzer(faces[0]).IsValid():
-            return None
-        return faces[0]
+        return TopoDS.Face_s(face)
     except Exception as err:  # an OCC failure: no section from the meridians
         if not is_occ_exception(err):
             raise
