@@ -614,3 +614,21 @@ def any_profile() -> st.SearchStrategy[TopoDS_Face]:
         line_arc_fillet_mix(),
         random_bspline_blob(),
     )
+
+
+def cusped_notch(fillet: float = 1.0, shift: float = 0.0) -> TopoDS_Face:
+    """A 6 x 4 rectangle (``y`` in ``[0, 4]``) whose bottom edge is notched by two disks of
+    radius ``fillet`` touching at ``(0, fillet)``, moved by ``shift`` along ``x``: the arcs
+    meet there tangent to each other, a reflex cusp (the meridian section of a rounded
+    rectangle revolved about its side)."""
+    import build123d as bd
+
+    f = fillet
+    with bd.BuildSketch() as sk:
+        with bd.Locations((0, 2)):
+            bd.Rectangle(6, 4)
+        with bd.Locations((0, f / 2)):
+            bd.Rectangle(2 * f, f, mode=bd.Mode.SUBTRACT)
+        with bd.Locations((f, f), (-f, f)):
+            bd.Circle(f)
+    return sk.sketch.faces()[0].translate((shift, 0, 0)).wrapped

@@ -17,6 +17,7 @@ from OCP.gp import gp_Pnt
 from OCP.TColgp import TColgp_Array1OfPnt
 
 import medialcad
+from tests import faces as F
 from tests import oracles as O
 from tests._mat import compound, cycle_rank
 
@@ -474,30 +475,13 @@ def test_a_full_circle_written_as_a_nurbs_has_the_circles_mat(
     assert 0 < solved[0] < 5000
 
 
-def _cusped_notch(fillet: float = 1.0) -> Any:
-    """A 6 x 4 rectangle whose bottom edge is notched by two disks touching at ``(0, f)``
-    (the meridian section of a rounded rectangle revolved about its side): the arcs meet
-    there tangent to each other, a reflex cusp."""
-    import build123d as bd
-
-    f = fillet
-    with bd.BuildSketch() as sk:
-        with bd.Locations((0, 2)):
-            bd.Rectangle(6, 4)
-        with bd.Locations((0, f / 2)):
-            bd.Rectangle(2 * f, f, mode=bd.Mode.SUBTRACT)
-        with bd.Locations((f, f), (-f, f)):
-            bd.Circle(f)
-    return sk.sketch.faces()[0].wrapped
-
-
 @pytest.mark.parametrize("fillet", [1.0, 0.3])
 def test_a_reflex_cusp_is_a_vertex_with_a_half_turn_of_normals(fillet: float) -> None:
     """Two convex arcs leaving a point in one direction with the face on both sides: the
     cusp is reflex (its normals sweep the half plane above it). The disks above it touch
     only it and the top edge, so the axis crosses ``x = 0`` at ``y = (4 + f) / 2`` and
     never reaches the cusp."""
-    face = _cusped_notch(fillet)
+    face = F.cusped_notch(fillet)
     mat = medialcad.medial_axis_2d(face)
     assert mat.boundary is not None
     cusps = [c for c in mat.boundary.corners if c.turn <= -np.pi + 1e-9]

@@ -800,16 +800,7 @@ def test_prism_of_a_profile_with_a_reflex_cusp(length: float) -> None:
     as "cusp (zero angle)"): the cusp's edge is a reflex edge whose normals sweep a half
     turn. (The oracle read the disks' axes, equidistant from the whole of each disk's
     arc, as outside: its nearest point, the cusp edge, had the other face's normal.)"""
-    import build123d as bd
-
-    with bd.BuildSketch() as sk:
-        with bd.Locations((0, 2)):
-            bd.Rectangle(6, 4)
-        with bd.Locations((0, 0.5)):
-            bd.Rectangle(2, 1, mode=bd.Mode.SUBTRACT)
-        with bd.Locations((1, 1), (-1, 1)):
-            bd.Circle(1)
-    solid = M.prism(sk.sketch.faces()[0].wrapped, length)
+    solid = M.prism(F.cusped_notch(), length)
     result = M.extrusion_mat(solid)
     rep = M.check(solid, result, f"cusped notch prism L={length}", n_complete=100)
     print(rep.line())

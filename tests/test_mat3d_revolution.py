@@ -1955,20 +1955,10 @@ def test_revolution_of_a_profile_with_a_reflex_cusp_off_its_axis(
     """A rectangle notched by two disks touching at a point, off the axis or along it by
     its far side (a pie slice): the cusp is a reflex vertex of the profile, answered at
     any angle (only a cusp on the axis refuses a partial turn)."""
-    import build123d as bd
-
     import medialcad
     from tests import _mat3d as M
 
-    with bd.BuildSketch() as sk:
-        with bd.Locations((0, 2)):
-            bd.Rectangle(6, 4)
-        with bd.Locations((0, 0.5)):
-            bd.Rectangle(2, 1, mode=bd.Mode.SUBTRACT)
-        with bd.Locations((1, 1), (-1, 1)):
-            bd.Circle(1)
-    face = sk.sketch.faces()[0].translate((shift, 0, 0)).wrapped
-    solid = revolve(face, math.radians(angle))
+    solid = revolve(F.cusped_notch(shift=shift), math.radians(angle))
     result = medialcad.medial_axis(solid)
     rep = M.check(solid, result, f"cusped notch x+{shift} {angle} deg", n_complete=60)
     print(rep.line())

@@ -42,14 +42,14 @@ from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.GProp import GProp_GProps
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex
 
 from medialcad.frame import Frame
 from medialcad.occ.io import is_occ_exception
 
-__all__ = ["exact_meridian", "iso_section"]
+__all__ = ["exact_meridian", "face_of_edges", "iso_section"]
 
 FloatArray = NDArray[np.float64]
 log = logging.getLogger(__name__)
@@ -105,18 +105,21 @@ def _revolution_surfaces(
         if isinstance(s, Geom_BSplineSurface):
             out.append((s, tuple(BRepTools.UVBounds_s(f)), False))
             continue
-        if not isinstance(s, _SWEPT):
-            continue
-        ax = s.Axis()
-        d = _xyz(ax.Direction())
-        off = _xyz(ax.Location()) - frame.origin
-        if (
-            np.linalg.norm(np.cross(d, frame.ydir)) > 1e-9
-            or np.linalg.norm(off - (off @ frame.ydir) * frame.ydir) > tol
-        ):
+        if not isinstance(s, _SWEPT) or not _coaxial(s, frame, tol):
             continue
         out.append((s, tuple(BRepTools.UVBounds_s(f)), True))
     return out
+
+
+def _coaxial(s: Any, frame: Frame, tol: float) -> bool:
+    """Whether the swept surface ``s`` turns about the frame's axis (``y``)."""
+    ax = s.Axis()
+    d = _xyz(ax.Direction())
+    off = _xyz(ax.Location()) - frame.origin
+    return bool(
+        np.linalg.norm(np.cross(d, frame.ydir)) <= 1e-9
+        and np.linalg.norm(off - (off @ frame.ydir) * frame.ydir) <= tol
+    )
 
 
 def _tangent(curve: Any, t: float) -> FloatArray:
@@ -502,26 +505,58 @@ def _meridian_edges(f: TopoDS_Face, frame: Frame, tol: float) -> list[TopoDS_Edg
         at = frame.origin + y * frame.ydir
         p0, p1 = at + (r_in if r_in > tol else 0.0) * frame.xdir, at + r_out * frame.xdir
         return [BRepBuilderAPI_MakeEdge(gp_Pnt(*p0), gp_Pnt(*p1)).Edge()]
-    if not isinstance(s, _SWEPT):
-        return None
-    ax = s.Axis()
-    d = _xyz(ax.Direction())
-    off = _xyz(ax.Location()) - frame.origin
-    if (
-        np.linalg.norm(np.cross(d, frame.ydir)) > 1e-9
-        or np.linalg.norm(off - (off @ frame.ydir) * frame.ydir) > tol
-    ):
+    if not isinstance(s, _SWEPT) or not _coaxial(s, frame, tol):
         return None
     um = 0.5 * (u0 + u1)
     # the angle is read at the iso's point farthest from the axis (its middle may be on it)
     vs = np.linspace(v0, v1, 9)
-    pts = np.array([_value(s.UIso(um), v) for v in vs]) - frame.origin
-    radial = pts - np.outer(pts @ frame.ydir, frame.ydir)
+    q = np.array([_value(s.UIso(um), v) for v in vs]) - frame.origin
+    radial = q - np.outer(q @ frame.ydir, frame.ydir)
     v_far = float(vs[int(np.argmax(np.linalg.norm(radial, axis=1)))])
     u = _swept_angle_param(s, um, v_far, frame)
     if not _within(u, u0, u1):
         return []
     return [BRepBuilderAPI_MakeEdge(s.UIso(u), v0, v1).Edge()]
+
+
+def face_of_edges(edge_seq: Any, pln: Any, tol: float) -> TopoDS_Face | None:
+    """One valid face on the plane ``pln`` bounded by the edges ``edge_seq`` (joined within
+    ``tol`` into an outer wire and its holes), or None when they do not close into one."""
+    from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
+    from OCP.ShapeFix import ShapeFix_Face
+    from OCP.TopTools import TopTools_HSequenceOfShape
+
+    from medialcad.occ.shapes import faces, wires
+
+    joined = TopTools_HSequenceOfShape()
+    ShapeAnalysis_FreeBounds.ConnectEdgesToWires_s(edge_seq, tol, False, joined)
+    loops = []
+    for i in range(1, joined.Length() + 1):
+        w = TopoDS.Wire_s(joined.Value(i))
+        mk = BRepBuilderAPI_MakeFace(pln, w, True)
+        if not BRep_Tool.IsClosed_s(w) or not mk.IsDone():
+            return None
+        loops.append((abs(_area(mk.Face())), w))
+    if not loops:
+        return None
+    loops.sort(key=lambda a: -a[0])
+    mk = BRepBuilderAPI_MakeFace(pln, loops[0][1], True)
+    for _, w in loops[1:]:
+        mk.Add(w)
+    if not mk.IsDone():
+        return None
+    fix = ShapeFix_Face(mk.Face())
+    fix.Perform()
+    pieces = faces(fix.Result())
+    if len(pieces) != 1:  # a "hole" outside the outer wire: two regions, not a profile
+        return None
+    face = pieces[0]
+    if len(wires(face)) != len(loops):
+        return None
+    want = loops[0][0] - sum(a for a, _ in loops[1:])
+    if not BRepCheck_Analyzer(face).IsValid() or abs(_area(face) - want) > 1e-9 * loops[0][0]:
+        return None
+    return face
 
 
 def iso_section(
@@ -535,8 +570,6 @@ def iso_section(
     about its side: its poles are dimples of horn-torus faces). None when a face is of
     another kind or the meridians do not close into one face."""
     from OCP.gp import gp_Ax3, gp_Dir, gp_Pln
-    from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
-    from OCP.ShapeFix import ShapeFix_Face
     from OCP.TopTools import TopTools_HSequenceOfShape
 
     try:
@@ -566,31 +599,8 @@ def iso_section(
         free.sort()
         for (_, i), (_, j) in zip(free[::2], free[1::2], strict=True):
             seq.Append(BRepBuilderAPI_MakeEdge(gp_Pnt(*pts[i]), gp_Pnt(*pts[j])).Edge())
-        joined = TopTools_HSequenceOfShape()
-        ShapeAnalysis_FreeBounds.ConnectEdgesToWires_s(seq, tol, False, joined)
         pln = gp_Pln(gp_Ax3(gp_Pnt(*frame.origin), gp_Dir(*frame.zdir), gp_Dir(*frame.xdir)))
-        loops = []
-        for i in range(1, joined.Length() + 1):
-            w = TopoDS.Wire_s(joined.Value(i))
-            mk = BRepBuilderAPI_MakeFace(pln, w, True)
-            if not BRep_Tool.IsClosed_s(w) or not mk.IsDone():
-                return None
-            loops.append((abs(_area(mk.Face())), w))
-        loops.sort(key=lambda a: -a[0])
-        mk = BRepBuilderAPI_MakeFace(pln, loops[0][1], True)
-        for _, w in loops[1:]:
-            mk.Add(w)
-        if not mk.IsDone():
-            return None
-        fix = ShapeFix_Face(mk.Face())
-        fix.Perform()
-        face = fix.Result()
-        if face.ShapeType() != TopAbs_FACE or not BRepCheck_Analyzer(face).IsValid():
-            return None
-        want = loops[0][0] - sum(a for a, _ in loops[1:])
-        if abs(_area(TopoDS.Face_s(face)) - want) > 1e-9 * loops[0][0]:
-            return None
-        return TopoDS.Face_s(face)
+        return face_of_edges(seq, pln, tol)
     except Exception as err:  # an OCC failure: no section from the meridians
         if not is_occ_exception(err):
             raise

@@ -68,8 +68,8 @@ from medialcad.errors import (
 )
 from medialcad.frame import Frame
 from medialcad.occ.io import is_occ_exception, occ_guard
-from medialcad.occ.meridian import exact_meridian
-from medialcad.occ.shapes import as_topods, compound, edges, faces, solids_or_shells, wires
+from medialcad.occ.meridian import exact_meridian, face_of_edges
+from medialcad.occ.shapes import as_topods, compound, edges, faces, solids_or_shells
 from medialcad.recognition import Extrusion, Revolution, SolidKind
 
 __all__ = ["recognize_solid"]
@@ -517,8 +517,6 @@ def _plane_section(
     revolution of a blob with a half-plane took 62 s; its plane section takes 0.2 s."""
     from OCP.BRepAdaptor import BRepAdaptor_Curve
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Section
-    from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds
-    from OCP.ShapeFix import ShapeFix_Face
     from OCP.TopTools import TopTools_HSequenceOfShape
 
     pln = gp_Pln(ax)
@@ -538,34 +536,7 @@ def _plane_section(
             return None  # on or across the axis
     if half.Length() == 0:
         return None
-    joined = TopTools_HSequenceOfShape()
-    ShapeAnalysis_FreeBounds.ConnectEdgesToWires_s(half, within, False, joined)
-    loops = []
-    for i in range(1, joined.Length() + 1):
-        w = TopoDS.Wire_s(joined.Value(i))
-        mk = BRepBuilderAPI_MakeFace(pln, w, True)
-        if not BRep_Tool.IsClosed_s(w) or not mk.IsDone():
-            return None
-        loops.append((abs(_area_centroid(mk.Face())[0]), w))
-    loops.sort(key=lambda a: -a[0])
-    mk = BRepBuilderAPI_MakeFace(pln, loops[0][1], True)
-    for _, w in loops[1:]:
-        mk.Add(w)
-    if not mk.IsDone():
-        return None
-    fix = ShapeFix_Face(mk.Face())
-    fix.Perform()
-    pieces = faces(fix.Result())
-    if len(pieces) != 1:  # a "hole" outside the outer wire: two regions, not a profile
-        return None
-    face = pieces[0]
-    if len(wires(face)) != len(loops):
-        return None
-    want = loops[0][0] - sum(a for a, _ in loops[1:])
-    area = _area_centroid(face)[0]
-    if not BRepCheck_Analyzer(face).IsValid() or abs(area - want) > 1e-9 * loops[0][0]:
-        return None
-    return face
+    return face_of_edges(half, pln, within)
 
 
 def _volume(shape: TopoDS_Shape, swept_faces: bool = False) -> float:
