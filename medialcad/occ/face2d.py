@@ -179,8 +179,15 @@ def _curve_to_numpy(c: Geom2d_Curve, first: float, last: float, approx_tol: floa
             return _offset_exact(base, c.Offset())
         if not isinstance(basis, Geom2d_OffsetCurve):
             # evaluated exactly from the basis's derivatives (an approximation of a
-            # piece a few 1e-6 long at an ellipse's vertex misplaced its curvature maximum)
-            return OffsetCurve(_curve_to_numpy(basis, first, last, approx_tol), c.Offset())
+            # piece a few 1e-6 long at an ellipse's vertex misplaced its curvature maximum);
+            # where the basis stalls at an end (a repeated pole) the offset's normal is a
+            # limit OCC takes and a formula cannot: approximated below
+            inner = _curve_to_numpy(basis, first, last, approx_tol)
+            speed = np.linalg.norm(inner.derivs([first, last])[1], axis=1)
+            pts = inner.point(np.linspace(first, last, 9))
+            size = float(np.ptp(pts, axis=0).max())
+            if float(speed.min()) * abs(last - first) > 1e-9 * max(size, 1e-300):
+                return OffsetCurve(inner, c.Offset())
     if isinstance(c, Geom2d_BSplineCurve):
         return _nurbs(c, trimmed=False, first=first, last=last)
     trimmed = Geom2d_TrimmedCurve(c, first, last)
@@ -211,7 +218,11 @@ def _to_2d(c3: Geom_Curve, local: gp_Pln, zdir: np.ndarray) -> Geom2d_Curve | No
             inner = _to_2d(basis.BasisCurve(), local, zdir)
             if inner is not None:
                 # 3D: basis + d (T x V); 2D: basis + d (T x Z)
-                return Geom2d_OffsetCurve(inner, basis.Offset() * float(np.sign(v @ zdir)))
+                try:
+                    return Geom2d_OffsetCurve(inner, basis.Offset() * float(np.sign(v @ zdir)))
+                except Exception as err:  # OCC refuses a C0 basis: approximated instead
+                    if not is_occ_exception(err):
+                        raise
     return GeomAPI.To2d_s(c3, local)
 
 
