@@ -138,18 +138,24 @@ def _loop_polyline(loop: list[EdgePiece], n: int = 64) -> FloatArray:
     return np.vstack(pts)
 
 
+def _end_derivs(piece: EdgePiece, at_end: bool) -> tuple[FloatArray, FloatArray]:
+    """First and second derivative of the piece's curve at one end; at a degenerate end
+    (a repeated pole) the limit from just inside."""
+    t = piece.t1 if at_end else piece.t0
+    _, d1, d2 = piece.curve.derivs([t])
+    if np.linalg.norm(d1[0]) <= 1e-12 * max(abs(piece.t1 - piece.t0), 1e-300):
+        _, d1, d2 = piece.curve.derivs(
+            [t + 1e-7 * (piece.t0 - piece.t1 if at_end else piece.t1 - piece.t0)]
+        )
+    return d1[0], d2[0]
+
+
 def _tangent(piece: EdgePiece, at_end: bool) -> FloatArray:
     if isinstance(piece.curve, LineCurve):
         d = piece.curve.direction * (1.0 if piece.t1 > piece.t0 else -1.0)
         return np.asarray(d / math.hypot(d[0], d[1]))
-    t = piece.t1 if at_end else piece.t0
-    _, d1, _ = piece.curve.derivs([t])
-    if np.linalg.norm(d1[0]) <= 1e-12 * max(abs(piece.t1 - piece.t0), 1e-300):
-        # a degenerate end (repeated pole): the limit tangent from just inside
-        _, d1, _ = piece.curve.derivs(
-            [t + 1e-7 * (piece.t0 - piece.t1 if at_end else piece.t1 - piece.t0)]
-        )
-    v = d1[0] * (1.0 if piece.t1 > piece.t0 else -1.0)
+    d1, _ = _end_derivs(piece, at_end)
+    v = d1 * (1.0 if piece.t1 > piece.t0 else -1.0)
     return np.asarray(v / np.linalg.norm(v))
 
 
@@ -157,15 +163,9 @@ def _curvature(piece: EdgePiece, at_end: bool) -> float:
     """Signed curvature (> 0 turning left, along the loop) at an end of ``piece``."""
     if isinstance(piece.curve, LineCurve):
         return 0.0
-    lo, hi = piece.t0, piece.t1
-    t = hi if at_end else lo
-    _, d1, d2 = piece.curve.derivs([t])
-    speed = float(np.linalg.norm(d1[0]))
-    if speed <= 1e-12 * max(abs(hi - lo), 1e-300):
-        _, d1, d2 = piece.curve.derivs([t + 1e-7 * ((lo - hi) if at_end else (hi - lo))])
-        speed = float(np.linalg.norm(d1[0]))
-    sense = 1.0 if hi > lo else -1.0
-    return sense * float(d1[0, 0] * d2[0, 1] - d1[0, 1] * d2[0, 0]) / speed**3
+    d1, d2 = _end_derivs(piece, at_end)
+    sense = 1.0 if piece.t1 > piece.t0 else -1.0
+    return sense * float(d1[0] * d2[1] - d1[1] * d2[0]) / float(np.linalg.norm(d1)) ** 3
 
 
 def _cusp_turn(a: EdgePiece, b: EdgePiece, diag: float) -> float | None:

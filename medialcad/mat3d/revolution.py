@@ -109,9 +109,9 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         from medialcad.occ.recognize import mirrored_section
 
         mat2d = medial_axis_2d(mirrored_section(reading), tol=tol)
-        if not full:
-            _refuse_cusped_slice(mat2d, _Canon(reading, mat2d.frame), diag)
     cn = _Canon(reading, mat2d.frame)
+    if reading.touches_axis and not full:
+        _refuse_cusped_slice(mat2d, cn, diag)
     # a half turn read 1e-13 past 180 degrees is a half turn (its caps are one plane)
     theta = math.pi if abs(reading.angle - math.pi) <= 1e-9 else reading.angle
     # a pie slice wider than a half turn: its axis is a reflex edge, the caps stop on the

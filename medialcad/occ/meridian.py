@@ -42,7 +42,7 @@ from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.GProp import GProp_GProps
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex
 
@@ -147,12 +147,7 @@ def _swept_iso(s: Any, u: float, v: float, frame: Frame) -> Any:
     """The meridian of a swept surface in the section plane: its first parameter is the
     angle (the sense of u about the frame's axis read off the surface itself: a mirrored
     placement turns the other way)."""
-    a0 = _angle(s, u, v, frame)
-    turn = math.remainder(_angle(s, u + 1e-3, v, frame) - a0, 2 * math.pi)
-    sign = 1.0 if turn > 0 else -1.0
-    for _ in range(2):
-        u -= sign * _angle(s, u, v, frame)
-    return s.UIso(u)
+    return s.UIso(_swept_angle_param(s, u, v, frame, steps=2))
 
 
 def _planar_isos(
@@ -454,12 +449,14 @@ def exact_meridian(
     return face
 
 
-def _swept_angle_param(s: Any, u: float, v: float, frame: Frame) -> float:
-    """The first parameter of a swept surface at the angle of ``frame``'s half-plane."""
+def _swept_angle_param(s: Any, u: float, v: float, frame: Frame, steps: int = 3) -> float:
+    """The first parameter of a swept surface at the angle of ``frame``'s half-plane (the
+    sense of u about the frame's axis read off the surface itself: a mirrored placement
+    turns the other way), ``steps`` Newton steps of unit slope from ``u``."""
     a0 = _angle(s, u, v, frame)
     turn = math.remainder(_angle(s, u + 1e-3, v, frame) - a0, 2 * math.pi)
     sign = 1.0 if turn > 0 else -1.0
-    for _ in range(3):
+    for _ in range(steps):
         u -= sign * _angle(s, u, v, frame)
     return u
 
@@ -474,6 +471,8 @@ def _meridian_edges(f: TopoDS_Face, frame: Frame, tol: float) -> list[TopoDS_Edg
     face is no surface swept about the axis nor a plane across it."""
     from OCP.Geom import Geom_Plane
 
+    from medialcad.occ.shapes import edges, wires
+
     s = BRep_Tool.Surface_s(f)
     if isinstance(s, Geom_RectangularTrimmedSurface):
         s = s.BasisSurface()
@@ -483,25 +482,18 @@ def _meridian_edges(f: TopoDS_Face, frame: Frame, tol: float) -> list[TopoDS_Edg
         if np.linalg.norm(np.cross(n, frame.ydir)) > 1e-9:
             return None
         pts = []
-        ex = TopExp_Explorer(f, TopAbs_EDGE)
-        while ex.More():
-            e = TopoDS.Edge_s(ex.Current())
+        for e in edges(f):
             c = BRep_Tool.Curve_s(e, 0.0, 0.0)
             if c is not None:
                 a, b = BRep_Tool.Range_s(e)
                 pts += [_value(c, t) for t in np.linspace(a, b, 9)]
-            ex.Next()
         if not pts:
             return None
         q = np.array(pts) - frame.origin
         y = float(np.median(q @ frame.ydir))
         r = np.linalg.norm(q - np.outer(q @ frame.ydir, frame.ydir), axis=1)
-        n_wires = 0
-        wx = TopExp_Explorer(f, TopAbs_WIRE)
-        while wx.More():
-            n_wires, _ = n_wires + 1, wx.Next()
         r_out = float(r.max())
-        r_in = float(r.min()) if n_wires > 1 else 0.0
+        r_in = float(r.min()) if len(wires(f)) > 1 else 0.0
         at = frame.origin + y * frame.ydir
         p0, p1 = at + (r_in if r_in > tol else 0.0) * frame.xdir, at + r_out * frame.xdir
         return [BRepBuilderAPI_MakeEdge(gp_Pnt(*p0), gp_Pnt(*p1)).Edge()]
@@ -559,9 +551,7 @@ def face_of_edges(edge_seq: Any, pln: Any, tol: float) -> TopoDS_Face | None:
     return face
 
 
-def iso_section(
-    solid_faces: list[TopoDS_Face], frame: Frame, size: float, tol: float
-) -> TopoDS_Face | None:
+def iso_section(solid_faces: list[TopoDS_Face], frame: Frame, tol: float) -> TopoDS_Face | None:
     """The meridian section of a full revolution in the half-plane ``x >= 0`` of
     ``frame``, built from its faces' own meridians there (iso-curves of the surfaces swept
     about the axis, radial segments of the planes across it), the chains that end on the

@@ -776,9 +776,11 @@ def _full_section(
     """The frame and meridian section of a full revolution about ``(origin, d)``."""
     first: MedialCadError | None = None
     base = _perp(d)
-    for phi in SECTION_ANGLES:
-        xdir = math.cos(phi) * base + math.sin(phi) * np.cross(d, base)
-        frame = Frame(origin, xdir, d)
+    frames = [
+        Frame(origin, math.cos(phi) * base + math.sin(phi) * np.cross(d, base), d)
+        for phi in SECTION_ANGLES
+    ]
+    for phi, frame in zip(SECTION_ANGLES, frames, strict=True):
         try:
             return frame, _section(solid, frame, size)
         except MedialCadError as err:
@@ -787,10 +789,8 @@ def _full_section(
     # OCC's Boolean failed at every angle: the faces' own meridians
     from medialcad.occ.meridian import iso_section
 
-    for phi in SECTION_ANGLES:
-        xdir = math.cos(phi) * base + math.sin(phi) * np.cross(d, base)
-        frame = Frame(origin, xdir, d)
-        face = iso_section(faces(solid), frame, size, 1e-7 * size)
+    for frame in frames:
+        face = iso_section(faces(solid), frame, 1e-7 * size)
         if face is not None:
             return frame, face
     assert first is not None
