@@ -217,7 +217,9 @@ def planes_and_areas(result: Any, eps: float) -> list[tuple[FloatArray, float, f
 
 
 def edge_faces(compound: Any) -> list[tuple[Any, int]]:
-    """Every non-degenerated edge of ``compound`` with the number of faces it bounds."""
+    """Every non-degenerated edge of ``compound`` with the number of sheet sides along it:
+    the faces it bounds, a face counted twice where the edge is its seam (a closed sheet,
+    e.g. of a loop of the 2D MAT from a branch point back to it, meets itself there)."""
     anc = TopTools_IndexedDataMapOfShapeListOfShape()
     TopExp.MapShapesAndAncestors_s(compound, TopAbs_EDGE, TopAbs_FACE, anc)
     out = []
@@ -229,7 +231,10 @@ def edge_faces(compound: Any) -> list[tuple[Any, int]]:
         for f in anc.FindFromIndex(i):
             if not any(f.IsSame(g) for g in faces):
                 faces.append(f)
-        out.append((e, len(faces)))
+        edge = TopoDS.Edge_s(e)
+        out.append(
+            (e, sum(2 if BRep_Tool.IsClosed_s(edge, TopoDS.Face_s(f)) else 1 for f in faces))
+        )
     return out
 
 

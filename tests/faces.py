@@ -41,6 +41,7 @@ __all__ = [
     "circle",
     "dump_on_failure",
     "ellipse",
+    "ellipse_with_hole",
     "filleted_polygon",
     "is_valid",
     "l_shape",
@@ -272,6 +273,16 @@ def circle(r: float = 1.0) -> TopoDS_Face:
 def annulus(ri: float = 1.0, ro: float = 2.0) -> TopoDS_Face:
     """The annulus ``ri <= |x| <= ro``."""
     return _face(_circle_wire(ro), [_circle_wire(ri)])
+
+
+def ellipse_with_hole(
+    a: float = 3.0, b: float = 1.6, r: float = 0.5, centre: ArrayLike = (1.5, 0.2)
+) -> TopoDS_Face:
+    """The ellipse of :func:`ellipse` with a circular hole of radius ``r`` at ``centre``.
+    Near an end of the ellipse its MAT is a loop round the hole from one branch point
+    back to it, and a branch from there to the other end."""
+    edge = cq.Edge.makeEllipse(a, b, cq.Vector(0, 0, 0), cq.Vector(0, 0, 1), cq.Vector(1, 0, 0))
+    return _face(cq.Wire.assembleEdges([edge]), [_circle_wire(r, centre)])
 
 
 def _stadium_wire(half_length: float, radius: float) -> cq.Wire:

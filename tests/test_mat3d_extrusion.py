@@ -805,3 +805,22 @@ def test_prism_of_a_profile_with_a_reflex_cusp(length: float) -> None:
     rep = M.check(solid, result, f"cusped notch prism L={length}", n_complete=100)
     print(rep.line())
     assert not rep.failures(), "; ".join(rep.failures())
+
+
+@pytest.mark.parametrize("length", [0.5, 5.0])
+@pytest.mark.parametrize("centre", [(1.5, 0.2), (-1.2, -0.3)])
+def test_prism_of_an_ellipse_with_a_hole_near_its_end(
+    centre: tuple[float, float], length: float
+) -> None:
+    """A loop of the 2D MAT from a branch point back to it (round a hole near an end of an
+    ellipse; FreeCAD fuzz seeds 40, 68 and 138): its sheets close on themselves, a ruling
+    bounding the same sheet on both sides. Each such ruling got one pcurve, and OCC found
+    the sheet unorientable ("traced wrong"): now it is the sheet's seam, with two."""
+    face = F.ellipse_with_hole(centre=centre)
+    solid = M.prism(face, length, F.random_placement(3, distance=80.0))
+    result = M.extrusion_mat(solid)
+    graph = result.mat2d.graph
+    assert any(b.start == b.end and b.start is not None for b in graph.branches)  # the loop
+    rep = M.check(solid, result, f"ellipse with a hole at {centre} L={length}", n_complete=100)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())

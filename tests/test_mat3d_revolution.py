@@ -68,7 +68,7 @@ from medialcad.mat3d.solid import medial_axis_of
 from medialcad.recognition import Revolution, read_step, recognize
 from tests import faces as F
 from tests import oracles3d as O
-from tests._mat3d import edge_faces, edge_length, edge_points, face_area, face_samples
+from tests._mat3d import check, edge_faces, edge_length, edge_points, face_area, face_samples
 from tests._mat3d import single_solid as _single_solid
 
 FloatArray = NDArray[np.float64]
@@ -1970,5 +1970,19 @@ def test_revolution_of_a_profile_with_a_reflex_cusp_off_its_axis(
     solid = revolve(F.cusped_notch(shift=shift), math.radians(angle))
     result = medialcad.medial_axis(solid)
     rep = M.check(solid, result, f"cusped notch x+{shift} {angle} deg", n_complete=60)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())
+
+
+@pytest.mark.parametrize("angle_deg", [40.0, 200.0, 360.0])
+def test_revolution_of_an_ellipse_with_a_hole_near_its_end(angle_deg: float) -> None:
+    """The 2D MAT's loop from a branch point back to it (round the hole) revolves into
+    sheets closed on themselves: their two ends are one arc (the branch point's circle),
+    the sheet's seam. With one pcurve for both uses OCC found them unorientable."""
+    face = F.place(F.ellipse_with_hole(), F.Placement(np.eye(3), np.array([4.5, 0.0, 0.0])))
+    solid = revolve(face, math.radians(angle_deg), F.random_placement(5, distance=60.0))
+    result = revolution_mat(solid)
+    assert any(b.start == b.end and b.start is not None for b in result.mat2d.graph.branches)
+    rep = check(solid, result, f"ellipse with a hole, {angle_deg:g} degrees", n_complete=100)
     print(rep.line())
     assert not rep.failures(), "; ".join(rep.failures())

@@ -190,6 +190,9 @@ def build_grid_complex(
 
     ``mid_rims`` are straight edges (end points) that bound the mid sheet besides the
     offset rows (a pie slice's axis), keyed ``("AXR", k)``: ``seam_roles`` names them."""
+    from scipy.interpolate import make_interp_spline
+
+    from medialcad.mat3d.arcs import interp_rational
     from medialcad.mat3d.revolution import interp_grid
     from medialcad.occ.complex import ComplexBuilder, Row
 
@@ -198,9 +201,15 @@ def build_grid_complex(
     row_radius: dict[Any, tuple[FloatArray, int, FloatArray]] = {}
     named_sides: list[tuple[Any, str, float]] = []
     for g in grids:
-        tu, tv, ku, kv, poles = interp_grid(g.w, g.v, g.points)
-        _, _, _, _, rpoles = interp_grid(g.w, g.v, g.radius)
-        face = cb.grid_face(poles, tu, tv, ku, kv, g.bottom_key, g.top_key)
+        if g.weights is None:
+            tu, tv, ku, kv, poles = interp_grid(g.w, g.v, g.points)
+            _, _, _, _, rpoles = interp_grid(g.w, g.v, g.radius)
+            weights = None
+        else:  # rows of exact arcs; the radius is constant along them
+            tu, ku, poles, weights = interp_rational(g.w, g.points, g.weights)
+            tv, kv = g.v, 2
+            rpoles = np.asarray(make_interp_spline(g.w, g.radius, k=ku, axis=0).c)
+        face = cb.grid_face(poles, tu, tv, ku, kv, g.bottom_key, g.top_key, weights)
         sheets.append(
             Sheet(
                 f"sheet-{len(sheets) + 1}",

@@ -26,8 +26,11 @@ Per segment of the 2D MAT (``sigma = sin(Theta/2)``, ``Theta`` the angle):
   x``, the caps end at 90 degrees on the level curve ``d(q) = x``, and that curve revolves
   on to ``Theta`` - 90 degrees (the balls touching the profile and the axis).
 
-Every patch interpolates an exact grid of points; patches that meet share the grid
-samples of their common side, hence one edge.
+Every patch interpolates exact rows (one per 2D MAT sample ``w``): a cap's row is a grid
+of points, a revolved sheet's row is its exact arc (``mat3d.arcs``: rational quadratic
+pieces, interpolated across rows in homogeneous coordinates), so revolved sheets and their
+rims lie on circles exactly. Patches that meet share the rows or arcs of their common
+side, hence one edge.
 """
 
 from __future__ import annotations
@@ -42,6 +45,7 @@ from scipy.interpolate import make_interp_spline
 
 from medialcad.errors import UnsupportedSolidError
 from medialcad.mat2d.graph import NodeKind
+from medialcad.mat3d.arcs import arc_knots, arc_net, arc_pieces, arc_points, homogeneous
 from medialcad.mat3d.segments import End, Segment, TouchFn, split_branches
 from medialcad.recognition import Revolution
 
@@ -55,13 +59,14 @@ _LINEAR = np.array([0.0, 0.0, 1.0, 1.0])
 class GridPatch:
     role: str
     w: FloatArray  # (nu,)
-    v: FloatArray  # (nv,)
-    points: FloatArray  # (nu, nv, 3)
+    v: FloatArray  # (nv,); of a rational patch: its arcs' knots (degree 2)
+    points: FloatArray  # (nu, nv, 3); of a rational patch: each row's arc poles
     radius: FloatArray  # (nu, nv)
     bottom_key: tuple
     top_key: tuple
     left: tuple[str | None, float]  # (role of the u = 0 side, its radius)
     right: tuple[str | None, float]
+    weights: FloatArray | None = None  # (nu, nv): rows are exact arcs (mat3d.arcs)
 
 
 class _Canon:
@@ -144,14 +149,15 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
     segments = split_branches(graph, boundary, level, touch)
     if pie:
         segments = [_axis_ends(s, cn, tol) for s in segments]
+    k_rev = arc_pieces(theta)  # a partial turn's revolved rows: arcs in k_rev pieces
     if not full:
-        segments = [_angular_rows(s, cn, theta, tol, cap_spec(s)) for s in segments]
+        segments = [_angular_rows(s, cn, theta, k_rev, tol, cap_spec(s)) for s in segments]
     # one angular sampling for all patches, so that shared sides get identical samples
     xs = [np.abs(cn.xy(s.centre)[:, 0]).max() for s in segments] + [1e-300]
     xf = [np.abs(cn.xy(np.vstack([s.foot_a, s.foot_b]))[:, 0]).max() for s in segments] + [1e-300]
     xmax = float(max(max(xs), max(xf)))
-    # revolved sheets end on rims (circles of the solid's convex edges): keep those far
-    # inside the solid's own tolerance; caps only need a fraction of tol
+    # circles of isolated curvature centres: far inside the solid's own tolerance; caps
+    # only need a fraction of tol (revolved sheets are exact arcs across)
     nv_rev = _nv(math.pi / 2 if full else theta, xmax, 1e-3 * tol)
     nv_cap = max(_nv(math.pi / 2 if theta > math.pi else theta / 2, xmax, 0.05 * tol), 5)
     if not full:
@@ -185,19 +191,19 @@ def revolution_parts(reading: Revolution, mat2d: Any, diag: float, tol: float) -
         fa, fb = cn.xy(s.foot_a), cn.xy(s.foot_b)
         if full:
             if not s.single:
-                _full_sheets(grids, cn, si, s, c, r, nv_rev)
+                _full_sheets(grids, cn, si, s, c, r)
             continue
         spec = cap_spec(s)
         assert spec is not None  # segments on the mirror's side were skipped above
         if not spec.high and not s.single:
-            _revolved_sheet(grids, junctions, cn, si, s, c, r, theta, nv_rev, wide)
+            _revolved_sheet(grids, junctions, cn, si, s, c, r, theta, k_rev, wide)
         for k in spec.feet:
             side, f = (("a", fa), ("b", fb))[k]
             top = _cap_sheets(
                 grids, offsets, cn, si, side, s, c, f, r, theta, sigma, spec.high, nv_cap
             )
             if wide and spec.high:
-                _level_sheet(grids, cn, (si, side), s.w, top, theta, nv_rev)
+                _level_sheet(grids, cn, (si, side), s.w, top, theta, k_rev)
     used = {n for b in graph.branches for n in (b.start, b.end) if n is not None}
     for nd in graph.nodes:
         if nd.index in used or nd.kind is not NodeKind.CURVATURE_CENTRE:
@@ -349,11 +355,17 @@ def _axis_ends(s: Segment, cn: _Canon, tol: float) -> Segment:
 
 
 def _angular_rows(
-    s: Segment, cn: _Canon, theta: float, tol: float, caps: _CapSpec | None = None
+    s: Segment,
+    cn: _Canon,
+    theta: float,
+    k: int,
+    tol: float,
+    caps: _CapSpec | None = None,
 ) -> Segment:
     """The segment with rows added (from its own interpolant, within 0.1 tol of exact)
-    where the revolved sheet's points, or the start cap's (``caps``), cubic across rows,
-    leave their exact surfaces by more than 0.05 tol.
+    where the revolved sheet's points (its rows exact arcs in ``k`` pieces, interpolated
+    in homogeneous coordinates), or the start cap's (``caps``), cubic across rows, leave
+    their exact surfaces by more than 0.05 tol.
 
     A row of a partial revolution's sheet spans the angles ``asin(r/x)`` to ``theta -
     asin(r/x)``, which change fast next to a level end (the span is 0 there): across 4
@@ -366,30 +378,37 @@ def _angular_rows(
     if s.single or len(s.w) < 2:
         return s
     v = np.array([0.0, 0.25, 0.5, 0.75, 1.0])
+    t = np.linspace(0.0, 1.0, 4 * k + 1)  # the arcs' ends, quarters and middles
     inner = replace(s, start=End("inner"), end=End("inner"))  # rows between the ends
 
-    def points(rows: FloatArray, seg: Segment) -> FloatArray:
+    def arcs(rows: FloatArray) -> FloatArray:
         xy, r = cn.xy(rows[:, :2]), rows[:, 2]
         phi0 = _start_angle(r, xy[:, 0], theta)
-        phi = phi0[:, None] + v[None, :] * np.maximum(theta - 2 * phi0, 0.0)[:, None]
-        out = [cn.model(np.broadcast_to(xy[:, None, :], (len(r), len(v), 2)), phi)]
-        if caps is not None:
-            c = caps.centres(xy)
-            for k in caps.feet:
-                f = cn.xy(rows[:, 3 + 2 * k : 5 + 2 * k])
-                q, ph, _ = _cap_grid(seg, c, f, r, theta, caps.sigma, caps.high, v)
-                out.append(cn.model(q, ph))
+        return homogeneous(*arc_net(cn.model, xy, phi0, np.maximum(theta - 2 * phi0, 0.0), k))
+
+    def cap_points(rows: FloatArray, seg: Segment) -> FloatArray:
+        assert caps is not None
+        xy, r = cn.xy(rows[:, :2]), rows[:, 2]
+        c = caps.centres(xy)
+        out = []
+        for j in caps.feet:
+            f = cn.xy(rows[:, 3 + 2 * j : 5 + 2 * j])
+            q, ph, _ = _cap_grid(seg, c, f, r, theta, caps.sigma, caps.high, v)
+            out.append(cn.model(q, ph))
         return np.concatenate(out, axis=1)
 
     w, rows = s.w, np.column_stack([s.centre, s.radius, s.foot_a, s.foot_b])
     for _ in range(12):
-        k = min(3, len(w) - 1)
+        ku = min(3, len(w) - 1)
         wm = 0.5 * (w[1:] + w[:-1])
-        mid = make_interp_spline(w, rows, k=k)(wm)
-        fit = make_interp_spline(w, points(rows, s), k=k, axis=0)(wm)
-        exact = points(mid, inner)
-        bad = np.linalg.norm(fit - exact, axis=2).max(axis=1) > 0.05 * tol
-        bad &= np.diff(w) > 1e-8
+        mid = make_interp_spline(w, rows, k=ku)(wm)
+        fit = arc_points(make_interp_spline(w, arcs(rows), k=ku, axis=0)(wm), t)
+        err = np.linalg.norm(fit - arc_points(arcs(mid), t), axis=2).max(axis=1)
+        if caps is not None and caps.feet:
+            fit = make_interp_spline(w, cap_points(rows, s), k=ku, axis=0)(wm)
+            cap_err = np.linalg.norm(fit - cap_points(mid, inner), axis=2).max(axis=1)
+            err = np.maximum(err, cap_err)
+        bad = (err > 0.05 * tol) & (np.diff(w) > 1e-8)
         if not np.any(bad) or len(w) > 800:
             break
         idx = np.nonzero(bad)[0]
@@ -463,7 +482,7 @@ def _revolved_sheet(
     c: FloatArray,
     r: FloatArray,
     theta: float,
-    nv: int,
+    k: int,
     wide: bool = False,
 ) -> None:
     """A segment's revolved sheet; ``wide``: a pie slice wider than 180 degrees, where a
@@ -472,21 +491,20 @@ def _revolved_sheet(
     phi0 = _start_angle(r, c[:, 0], theta)
     _level_rows_at_half_angle(phi0, s, theta)
     span = np.maximum(theta - 2 * phi0, 0.0)
-    v = np.linspace(0.0, 1.0, nv)
-    phi = phi0[:, None] + v[None, :] * span[:, None]
-    pts = cn.model(np.broadcast_to(c[:, None, :], (len(c), nv, 2)), phi)
-    rad = np.broadcast_to(r[:, None], (len(c), nv)).copy()
+    pts, wts = arc_net(cn.model, c, phi0, span, k)
+    rad = np.broadcast_to(r[:, None], wts.shape).copy()
     grids.append(
         GridPatch(
             "revolved",
             s.w,
-            v,
+            arc_knots(k),
             pts,
             rad,
             ("SB", si),
             ("ST", si),
             (_end_role(s, 0, wide), float(r[0])),
             (_end_role(s, 1, wide), float(r[-1])),
+            wts,
         )
     )
     for i, end in ((0, s.start), (-1, s.end)):
@@ -506,44 +524,45 @@ def _level_sheet(
     w: FloatArray,
     level: tuple,
     theta: float,
-    nv: int,
+    k: int,
 ) -> None:
     """The level curve ``d(q) = x`` (``level``: its points ``q`` and distances ``d``, one a
     row ``w``) where a high segment's cap ends, revolved from 90 degrees to ``Theta`` - 90
     (a pie slice wider than 180 degrees): the balls there touch the profile and the axis,
     the solid's reflex edge; radius ``x``. ``key``: the cap's ``(segment, side)``."""
     q, d = level
-    v = np.linspace(0.0, 1.0, nv)
-    phi = 0.5 * math.pi + v * (theta - math.pi)
     n = len(q)
-    pts = cn.model(np.broadcast_to(q[:, None, :], (n, nv, 2)), np.broadcast_to(phi, (n, nv)))
-    rad = np.broadcast_to(d[:, None], (n, nv)).copy()
+    pts, wts = arc_net(cn.model, q, np.full(n, 0.5 * math.pi), np.full(n, theta - math.pi), k)
+    rad = np.broadcast_to(d[:, None], wts.shape).copy()
     bottom, top = ("OFS", *key), ("OFE", *key)
-    grids.append(GridPatch("revolved", w, v, pts, rad, bottom, top, (None, 0.0), (None, 0.0)))
+    grids.append(
+        GridPatch("revolved", w, arc_knots(k), pts, rad, bottom, top, (None, 0.0), (None, 0.0), wts)
+    )
 
 
 def _full_sheets(
-    grids: list[GridPatch], cn: _Canon, si: int, s: Segment, c: FloatArray, r: FloatArray, nv: int
+    grids: list[GridPatch], cn: _Canon, si: int, s: Segment, c: FloatArray, r: FloatArray
 ) -> None:
-    quarters = np.linspace(0.0, 2.0 * math.pi, 5)
-    v = np.linspace(0.0, 1.0, nv)
+    """A full turn's revolved sheet of segment ``s``, in four quarter turns (one exact
+    rational arc a row)."""
+    n = len(c)
     for k in range(4):
-        phi = quarters[k] + v * (quarters[k + 1] - quarters[k])
-        pts = cn.model(
-            np.broadcast_to(c[:, None, :], (len(c), nv, 2)), np.broadcast_to(phi, (len(c), nv))
-        )
-        rad = np.broadcast_to(r[:, None], (len(c), nv)).copy()
+        pts, wts = arc_net(cn.model, c, np.full(n, 0.5 * math.pi * k), np.full(n, 0.5 * math.pi), 1)
+        if k == 3:  # the last quarter ends on the first one's row exactly
+            pts[:, -1] = cn.model(c, np.zeros(n))
+        rad = np.broadcast_to(r[:, None], wts.shape).copy()
         grids.append(
             GridPatch(
                 "revolved",
                 s.w,
-                v,
+                arc_knots(1),
                 pts,
                 rad,
                 ("ROW", si, k),
                 ("ROW", si, (k + 1) % 4),
                 (_end_role(s, 0), float(r[0])),
                 (_end_role(s, 1), float(r[-1])),
+                wts,
             )
         )
 

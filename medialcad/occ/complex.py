@@ -1,8 +1,9 @@
 """Build a sewn, non-manifold B-spline complex with ``BRep_Builder``.
 
 Sheets are built as faces on B-spline surfaces ruled in ``v`` (degree 1) between two
-rows of poles that share one knot vector in ``u``; every boundary side of a face is a
-real shared edge or a degenerated edge:
+rows of poles that share one knot vector in ``u``, or on tensor B-spline surfaces
+(rational ones for revolved sheets, whose ``u = const`` sides are exact arcs); every
+boundary side of a face is a real shared edge or a degenerated edge:
 
 - *curve edges* (seams, rims, offset seams) are created once per key and carry the row's
   B-spline with parameter ``u``; every face on that row gets the pcurve ``v = 0`` or
@@ -33,7 +34,7 @@ from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface
 from OCP.Geom2d import Geom2d_Line
 from OCP.gp import gp_Ax3, gp_Dir, gp_Dir2d, gp_Pln, gp_Pnt, gp_Pnt2d
 from OCP.TColgp import TColgp_Array1OfPnt, TColgp_Array2OfPnt
-from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
+from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal, TColStd_Array2OfReal
 from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
@@ -55,6 +56,7 @@ class Row:
     knots: FloatArray
     poles: FloatArray
     degree: int
+    weights: FloatArray | None = None  # (n,): rational
 
 
 def _knots_mults(t: FloatArray) -> tuple[TColStd_Array1OfReal, TColStd_Array1OfInteger]:
@@ -86,12 +88,19 @@ def _pnt(p: FloatArray) -> gp_Pnt:
     return gp_Pnt(float(p[0]), float(p[1]), float(p[2]))
 
 
-def bspline(knots: FloatArray, poles: FloatArray, degree: int) -> Geom_BSplineCurve:
+def bspline(
+    knots: FloatArray, poles: FloatArray, degree: int, weights: FloatArray | None = None
+) -> Geom_BSplineCurve:
     arr = TColgp_Array1OfPnt(1, len(poles))
     for i, p in enumerate(poles, start=1):
         arr.SetValue(i, _pnt(p))
     k, m = _knots_mults(knots)
-    return Geom_BSplineCurve(arr, k, m, degree)
+    if weights is None or np.all(weights == 1.0):
+        return Geom_BSplineCurve(arr, k, m, degree)
+    wa = TColStd_Array1OfReal(1, len(weights))
+    for i, x in enumerate(np.asarray(weights, dtype=float).tolist(), start=1):
+        wa.SetValue(i, x)
+    return Geom_BSplineCurve(arr, wa, k, m, degree)
 
 
 @dataclass
@@ -115,6 +124,7 @@ class ComplexBuilder:
     faces: list[TopoDS_Face] = field(default_factory=list)
     _grid: dict[tuple[int, int, int], list[int]] = field(default_factory=dict)
     _xyz: list[tuple[float, float, float]] = field(default_factory=list)
+    _uses: dict[int, tuple[Geom2d_Line, bool]] = field(default_factory=dict)  # this face's edges
 
     # -- vertices ------------------------------------------------------------------
     def vertex(self, p: FloatArray) -> int:
@@ -155,7 +165,7 @@ class ComplexBuilder:
         got = self.curve_edges.get(row.key)
         if got is None:
             v0, v1 = self.vertex(row.poles[0]), self.vertex(row.poles[-1])
-            curve = bspline(row.knots, row.poles, row.degree)
+            curve = bspline(row.knots, row.poles, row.degree, row.weights)
             got = _Edge(self._edge(curve, v0, v1), v0, v1)
             self.curve_edges[row.key] = got
         return got
@@ -175,6 +185,7 @@ class ComplexBuilder:
         """A face ruled between two rows of equal knots (``v = 0`` bottom, ``v = 1`` top)."""
         if len(bottom.poles) != len(top.poles) or bottom.degree != top.degree:
             raise ComputationError("ruled face rows are not compatible")
+        self._uses = {}
         with occ_guard("building a medial sheet"):
             n = len(bottom.poles)
             arr = TColgp_Array2OfPnt(1, n, 1, 2)
@@ -213,11 +224,14 @@ class ComplexBuilder:
         dv: int,
         bottom_key: Hashable,
         top_key: Hashable,
+        weights: FloatArray | None = None,
     ) -> TopoDS_Face:
-        """A face on a tensor B-spline surface ``poles (nu, nv, 3)``; ``v = 0``/``v = 1``
-        rows are the shared curve edges ``bottom_key``/``top_key``, the ``u = 0``/``u = 1``
-        sides are shared by their geometry (end vertices and middle pole)."""
+        """A face on a tensor B-spline surface ``poles (nu, nv, 3)`` (rational with
+        ``weights (nu, nv)``); ``v = 0``/``v = 1`` rows are the shared curve edges
+        ``bottom_key``/``top_key`` (unit weights there), the ``u = 0``/``u = 1`` sides are
+        shared by their geometry (end vertices and middle pole)."""
         nu, nv = poles.shape[:2]
+        self._uses = {}
         with occ_guard("building a medial sheet"):
             arr = TColgp_Array2OfPnt(1, nu, 1, nv)
             for i in range(nu):
@@ -225,7 +239,14 @@ class ComplexBuilder:
                     arr.SetValue(i + 1, j + 1, _pnt(poles[i, j]))
             uk, um = _knots_mults(u_knots)
             vk, vm = _knots_mults(v_knots)
-            surf = Geom_BSplineSurface(arr, uk, vk, um, vm, du, dv)
+            if weights is None:
+                surf = Geom_BSplineSurface(arr, uk, vk, um, vm, du, dv)
+            else:
+                wa = TColStd_Array2OfReal(1, nu, 1, nv)
+                for i, line in enumerate(np.asarray(weights, dtype=float).tolist(), start=1):
+                    for j, x in enumerate(line, start=1):
+                        wa.SetValue(i, j, x)
+                surf = Geom_BSplineSurface(arr, wa, uk, vk, um, vm, du, dv)
             face = TopoDS_Face()
             self.builder.MakeFace(face, surf, TopLoc_Location(), self.tol)
             wire = TopoDS_Wire()
@@ -235,9 +256,10 @@ class ComplexBuilder:
             b00 = self.vertex(poles[0, 0])
             t11 = self.vertex(poles[-1, -1])
             self._row_side(wire, face, bottom, 0.0, forward=True, v_from=b00)
-            self._col_side(wire, face, 1.0, Row(None, v_knots, poles[-1], dv), up=True)
+            wl, wr = (None, None) if weights is None else (weights[0], weights[-1])
+            self._col_side(wire, face, 1.0, Row(None, v_knots, poles[-1], dv, wr), up=True)
             self._row_side(wire, face, top, 1.0, forward=False, v_from=t11)
-            self._col_side(wire, face, 0.0, Row(None, v_knots, poles[0], dv), up=False)
+            self._col_side(wire, face, 0.0, Row(None, v_knots, poles[0], dv, wl), up=False)
             self.builder.Add(face, wire)
         self.faces.append(face)
         return face
@@ -260,13 +282,10 @@ class ComplexBuilder:
         key = self.side_key(col.poles)
         e = self.curve_edges.get(key)
         if e is None:
-            e = self.curve_edge(Row(key, col.knots, col.poles, col.degree))
+            e = self.curve_edge(Row(key, col.knots, col.poles, col.degree, col.weights))
         same = e.v0 == v0  # the edge runs v = 0 -> 1 on this face
         pc = Geom2d_Line(gp_Pnt2d(u, 0.0 if same else 1.0), gp_Dir2d(0.0, 1.0 if same else -1.0))
-        self.builder.UpdateEdge(e.edge, pc, face, self.tol)
-        self.builder.Range(e.edge, face, 0.0, 1.0)
-        forward = same == up
-        self.builder.Add(wire, e.edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
+        self._attach(wire, face, e, pc, forward=same == up)
 
     def _row_side(
         self,
@@ -286,9 +305,7 @@ class ComplexBuilder:
             return
         e = self.curve_edge(row)
         pc = Geom2d_Line(gp_Pnt2d(0.0, v), gp_Dir2d(1.0, 0.0))
-        self.builder.UpdateEdge(e.edge, pc, face, self.tol)
-        self.builder.Range(e.edge, face, 0.0, 1.0)
-        self.builder.Add(wire, e.edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
+        self._attach(wire, face, e, pc, forward=forward)
 
     def _line_side(self, wire: TopoDS_Wire, face: TopoDS_Face, u: float, va: int, vb: int) -> None:
         """The side ``u = const`` traversed from vertex ``va`` to ``vb``."""
@@ -304,9 +321,27 @@ class ComplexBuilder:
         v_start = (0.0 if going_up else 1.0) if same else (1.0 if going_up else 0.0)
         d = (1.0 if going_up else -1.0) * (1.0 if same else -1.0)
         pc = Geom2d_Line(gp_Pnt2d(u, v_start), gp_Dir2d(0.0, d))
-        self.builder.UpdateEdge(e.edge, pc, face, self.tol)
+        self._attach(wire, face, e, pc, forward=same)
+
+    def _attach(
+        self, wire: TopoDS_Wire, face: TopoDS_Face, e: _Edge, pc: Geom2d_Line, *, forward: bool
+    ) -> None:
+        """Add edge ``e`` to the face's ``wire`` with its pcurve ``pc``. An edge met twice
+        on one face is its seam (a loop of the 2D MAT from a branch point back to it: the
+        sheet's two ends are one ruling or arc): it gets both pcurves, the first for its
+        forward use."""
+        prev = self._uses.get(id(e))
+        if prev is None:
+            self.builder.UpdateEdge(e.edge, pc, face, self.tol)
+            self._uses[id(e)] = (pc, forward)
+        else:
+            pc0, forward0 = prev
+            if forward0 == forward:
+                raise ComputationError("a sheet runs along one of its edges twice the same way")
+            pf, pr = (pc0, pc) if forward0 else (pc, pc0)
+            self.builder.UpdateEdge(e.edge, pf, pr, face, self.tol)
         self.builder.Range(e.edge, face, 0.0, 1.0)
-        self.builder.Add(wire, e.edge.Oriented(TopAbs_FORWARD if same else TopAbs_REVERSED))
+        self.builder.Add(wire, e.edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
 
     def _degenerate(self, wire: TopoDS_Wire, face: TopoDS_Face, pc: Geom2d_Line, v: int) -> None:
         e = TopoDS_Edge()
