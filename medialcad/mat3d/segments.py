@@ -485,6 +485,23 @@ def _fan(
     return _fan_segments(graph, boundary, node, loop, pieces)
 
 
+def _distinct(pts: FloatArray, gap: float) -> FloatArray:
+    """``pts`` without the points within ``gap`` of the previous one kept (the last point
+    stays, in place of the one before it): a stretch's start 4e-12 from an element's end
+    gave three rows 4e-12 apart, and the fan's rim, interpolated on their chord length,
+    swung 0.016 off the node's circle between them (a FreeCAD fuzz prism)."""
+    keep = [0]
+    for i in range(1, len(pts)):
+        if float(np.linalg.norm(pts[i] - pts[keep[-1]])) > gap:
+            keep.append(i)
+    if keep[-1] != len(pts) - 1:
+        if len(keep) > 1:
+            keep[-1] = len(pts) - 1
+        else:
+            keep.append(len(pts) - 1)
+    return pts[np.array(keep)]
+
+
 def _fan_segments(
     graph: MedialGraph,
     boundary: Boundary,
@@ -501,7 +518,7 @@ def _fan_segments(
     end = End("node", node, NodeKind.CURVATURE_CENTRE)
     segs = []
     for s0, s1 in pieces:
-        part = _loop_points(boundary, loop, s0, s1, step)
+        part = _distinct(_loop_points(boundary, loop, s0, s1, step), 1e-3 * step)
         if (
             len(part) < 2
             or float(np.linalg.norm(part[-1] - part[0])) + float(np.ptp(part, axis=0).max())
