@@ -498,13 +498,26 @@ def _section(solid: TopoDS_Shape, frame: Frame, size: float) -> TopoDS_Face:
         return fast
     with occ_guard("cutting the meridian section"):
         half = BRepBuilderAPI_MakeFace(gp_Pln(ax), 0.0, 2 * size, -2 * size, 2 * size).Face()
-        common = BRepAlgoAPI_Common(solid, half)
+        common = BRepAlgoAPI_Common()
+        common.SetArguments(_shape_list(solid))
+        common.SetTools(_shape_list(half))
+        common.SetNonDestructive(True)  # (it raised the caller's vertex tolerances)
+        common.Build()
         if not common.IsDone():
             raise NotExtrusionOrRevolutionError("the meridian section of the revolution failed")
         fs = faces(common.Shape())
     if not fs:
         raise NotExtrusionOrRevolutionError("the meridian section of the revolution is empty")
     return _merge_faces(fs, "meridian section")
+
+
+def _shape_list(shape: TopoDS_Shape) -> Any:
+    """A one-shape ``TopTools_ListOfShape`` (a Boolean's arguments or tools)."""
+    from OCP.TopTools import TopTools_ListOfShape
+
+    out = TopTools_ListOfShape()
+    out.Append(shape)
+    return out
 
 
 def _plane_section(
@@ -522,6 +535,7 @@ def _plane_section(
     pln = gp_Pln(ax)
     sec = BRepAlgoAPI_Section(solid, pln, False)
     sec.Approximation(True)
+    sec.SetNonDestructive(True)
     sec.Build()
     if not sec.IsDone():
         return None
@@ -903,7 +917,11 @@ def mirrored_section(reading: Revolution) -> TopoDS_Face:
         with occ_guard("mirroring the profile across the axis"):
             # both images are reversed so that the halves share one normal
             image = BRepBuilderAPI_Transform(reading.profile, trsf, True).Shape().Reversed()
-            fuse = BRepAlgoAPI_Fuse(reading.profile, image)
+            fuse = BRepAlgoAPI_Fuse()
+            fuse.SetArguments(_shape_list(reading.profile))
+            fuse.SetTools(_shape_list(image))
+            fuse.SetNonDestructive(True)
+            fuse.Build()
             if not fuse.IsDone():
                 raise NotExtrusionOrRevolutionError("the meridian section could not be completed")
             fs = faces(fuse.Shape())
