@@ -586,3 +586,36 @@ def _solid_euler(solid: Any) -> int | None:
 
 def total_area(shapes: Sequence[Any]) -> float:
     return float(sum(face_area(s) for s in shapes))
+
+
+def judge(shape: Any, seed: int) -> dict[str, Any]:
+    """A fuzz verdict on ``shape``'s MAT (``scripts/fuzz_*.py``): its ``status``
+    (passed, refused: a medialcad ``InputError``, error: another medialcad error, failed:
+    the oracles' findings, crash: anything else), the ``seconds`` of the MAT, the oracles'
+    ``report`` line and ``why`` it did not pass."""
+    import traceback
+
+    import medialcad
+    from medialcad.errors import InputError, MedialCadError
+
+    rec: dict[str, Any] = {}
+    t0 = time.perf_counter()
+    try:
+        res = medialcad.medial_axis(shape)
+        rec["seconds"] = round(time.perf_counter() - t0, 3)
+        rep = check(
+            shape, res, f"seed {seed}", per_face=10, max_faces=16, max_edges=16,
+            per_edge=2, n_complete=60, seed=seed,
+        )  # fmt: skip
+        failures = rep.failures()
+        rec["status"] = "failed" if failures else "passed"
+        rec["report"] = rep.line()
+        if failures:
+            rec["why"] = "; ".join(failures)
+    except InputError as err:
+        rec["status"], rec["why"] = "refused", str(err)
+    except MedialCadError as err:
+        rec["status"], rec["why"] = "error", f"{type(err).__name__}: {err}"
+    except Exception:  # noqa: BLE001 - logged, the run goes on
+        rec["status"], rec["why"] = "crash", traceback.format_exc()[-800:]
+    return rec
