@@ -832,12 +832,12 @@ def test_prism_whose_arc_fan_starts_at_an_element_end() -> None:
     centre's fan over its arc started 4e-12 from the arc's end vertex: three rim rows
     4e-12 apart, and the rim interpolated on their chord length swung 0.016 off the
     node's circle (radius 4.7 tol off, soundness 11 tol). The fan's rows are now
-    distinct (:func:`medialcad.mat3d.segments._distinct`)."""
-    from medialcad.mat3d.segments import _distinct
+    distinct (:func:`medialcad.mat3d.segments.distinct_rows`)."""
+    from medialcad.mat3d.segments import distinct_rows
     from medialcad.recognition import read_step
 
     pts = np.array([[0.0, 0.0], [4e-12, 0.0], [4.4e-12, 0.0], [0.1, 0.0], [0.2, 1e-13]])
-    assert _distinct(pts, 1e-6).tolist() == [[0.0, 0.0], [0.1, 0.0], [0.2, 1e-13]]
+    assert distinct_rows(pts, 1e-6).tolist() == [0, 3, 4]
     (solid,) = read_step(Path(__file__).parent / "data" / "freecad_fuzz136_fan_prism.step")
     result = M.extrusion_mat(solid)
     rep = M.check(solid, result, "FreeCAD fuzz 136", n_complete=100)

@@ -26,7 +26,7 @@ from scipy.interpolate import make_interp_spline
 
 from medialcad.mat2d.boundary import Boundary
 from medialcad.mat2d.graph import NodeKind
-from medialcad.mat3d.segments import Segment, foot_normals
+from medialcad.mat3d.segments import Segment, distinct_rows, foot_normals
 
 __all__ = ["PatchRows", "RowData", "extrusion_rows", "interp_rows"]
 
@@ -93,20 +93,7 @@ def _side_parameter(rows: FloatArray, fallback: FloatArray) -> tuple[FloatArray,
     n = len(rows)
     if n < 2 or not total > 0:
         return fallback, np.arange(n)
-    gap = 1e-9 * total
-    keep = [0]
-    for i in range(1, n):
-        if np.linalg.norm(rows[i] - rows[keep[-1]]) > gap:
-            keep.append(i)
-    if keep[-1] != n - 1:  # the end row (its node or level) stays, in place of the last
-        if len(keep) > 1:
-            keep[-1] = n - 1
-        else:
-            keep.append(n - 1)
-        # (and the row before it must not sit on it: no repeated parameter)
-        while len(keep) > 2 and np.linalg.norm(rows[keep[-1]] - rows[keep[-2]]) <= gap:
-            del keep[-2]
-    idx = np.array(keep, dtype=np.int64)
+    idx = distinct_rows(rows, 1e-9 * total)
     w = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(rows[idx], axis=0), axis=1))])
     return w / w[-1], idx
 

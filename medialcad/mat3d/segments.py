@@ -26,7 +26,7 @@ from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
 from medialcad.mat2d.pocket import POCKET_LENGTH, golden_minima, pocket_rows
 from medialcad.mat2d.pocket import closed_period as _closed_period
 
-__all__ = ["End", "Segment", "foot_normals", "split_branches"]
+__all__ = ["End", "Segment", "distinct_rows", "foot_normals", "split_branches"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -485,21 +485,26 @@ def _fan(
     return _fan_segments(graph, boundary, node, loop, pieces)
 
 
-def _distinct(pts: FloatArray, gap: float) -> FloatArray:
-    """``pts`` without the points within ``gap`` of the previous one kept (the last point
-    stays, in place of the one before it): a stretch's start 4e-12 from an element's end
-    gave three rows 4e-12 apart, and the fan's rim, interpolated on their chord length,
-    swung 0.016 off the node's circle between them (a FreeCAD fuzz prism)."""
+def distinct_rows(rows: FloatArray, gap: float) -> IntArray:
+    """Indices of ``rows`` without those within ``gap`` of the previous one kept: the
+    first and last rows stay (the last in place of the one before it, which must not sit
+    on it either). Rows that repeat give interpolation repeated parameters: a fan's
+    stretch starting 4e-12 from an element's end gave three rows 4e-12 apart, and its
+    rim, interpolated on their chord length, swung 0.016 off the node's circle (a
+    FreeCAD fuzz prism); a side whose feet stand still for many rows looped."""
+    n = len(rows)
     keep = [0]
-    for i in range(1, len(pts)):
-        if float(np.linalg.norm(pts[i] - pts[keep[-1]])) > gap:
+    for i in range(1, n):
+        if float(np.linalg.norm(rows[i] - rows[keep[-1]])) > gap:
             keep.append(i)
-    if keep[-1] != len(pts) - 1:
+    if keep[-1] != n - 1:  # the end row (its node or level) stays, in place of the last
         if len(keep) > 1:
-            keep[-1] = len(pts) - 1
+            keep[-1] = n - 1
         else:
-            keep.append(len(pts) - 1)
-    return pts[np.array(keep)]
+            keep.append(n - 1)
+        while len(keep) > 2 and float(np.linalg.norm(rows[keep[-1]] - rows[keep[-2]])) <= gap:
+            del keep[-2]
+    return np.array(keep, dtype=np.int64)
 
 
 def _fan_segments(
@@ -518,7 +523,8 @@ def _fan_segments(
     end = End("node", node, NodeKind.CURVATURE_CENTRE)
     segs = []
     for s0, s1 in pieces:
-        part = _distinct(_loop_points(boundary, loop, s0, s1, step), 1e-3 * step)
+        part = _loop_points(boundary, loop, s0, s1, step)
+        part = part[distinct_rows(part, 1e-3 * step)]
         if (
             len(part) < 2
             or float(np.linalg.norm(part[-1] - part[0])) + float(np.ptp(part, axis=0).max())
