@@ -161,6 +161,12 @@ class ShapeDistance:
         return np.array([self.nearest(p)[0] for p in _points(points)])
 
 
+def _raised_by_occ(err: BaseException) -> bool:
+    """Whether OpenCascade raised ``err`` (OCP gives every ``Standard_Failure`` its own
+    class straight under ``Exception``, in module ``OCP.OCP.<package>``)."""
+    return (type(err).__module__ or "").startswith("OCP") or type(err) is RuntimeError
+
+
 # --------------------------------------------------------------------------- the boundary
 
 
@@ -534,10 +540,20 @@ class SolidBoundary:
                 if lb[i] > min(best, bound):
                     break
                 ext = exts[i]
-                if is_face:
-                    ext.Perform(vx, shapes[i])
-                else:
-                    ext.Perform(vx)
+                try:
+                    if is_face:
+                        ext.Perform(vx, shapes[i])
+                    else:
+                        ext.Perform(vx)
+                except Exception as err:
+                    if not _raised_by_occ(err):
+                        raise
+                    # Extrema's own construction failed (a zero cross product near a
+                    # revolved face's pole, FreeCAD fuzz seed 106): ask the other algorithm
+                    got = self._distance_dss(vx, shapes[i], is_face)
+                    if got is not None and got[0] < best:
+                        best, foot, face, uv = got[0], got[1], (int(i) if is_face else None), got[2]
+                    continue
                 if is_face and (not ext.IsDone() or ext.NbExt() == 0):
                     # BRepExtrema_ExtPF answers nothing where its face classifier errs:
                     # seen at a point whose projection is inside a planar bottom face
@@ -554,6 +570,25 @@ class SolidBoundary:
                         best, foot = dk, _xyz(ext.Point(k))
                         face, uv = (int(i), np.array(ext.Parameter(k))) if is_face else (None, None)
         return best, foot, face, uv
+
+    def _distance_dss(
+        self, vx: Any, shape: TopoDS_Shape, is_face: bool
+    ) -> tuple[float, FloatArray, FloatArray | None] | None:
+        """Distance from the vertex ``vx`` to one face or edge by
+        ``BRepExtrema_DistShapeShape`` (with the foot's face parameters when it is inside
+        the face), or ``None`` if that fails too."""
+        try:
+            dss = BRepExtrema_DistShapeShape(vx, shape)
+            if not dss.IsDone() or dss.NbSolution() < 1:
+                return None
+            uv = None
+            if is_face and dss.SupportTypeShape2(1) == _IN_FACE:
+                uv = np.array(dss.ParOnFaceS2(1))
+            return float(dss.Value()), _xyz(dss.PointOnShape2(1)), uv
+        except Exception as err:
+            if not _raised_by_occ(err):
+                raise
+            return None
 
     def _project_fallback(
         self, x: FloatArray, face: int, best: float

@@ -843,3 +843,43 @@ def test_prism_whose_arc_fan_starts_at_an_element_end() -> None:
     rep = M.check(solid, result, "FreeCAD fuzz 136", n_complete=100)
     print(rep.line())
     assert not rep.failures(), "; ".join(rep.failures())
+
+
+@pytest.mark.parametrize("length", [3.0, 10.0])
+def test_prism_through_an_arc_centre_found_within_the_tolerance(length: float) -> None:
+    """The profile of FreeCAD fuzz seed 29, extruded. Its 2D MAT has a node at the centre
+    of an arc whose disk crosses the next arc by 6e-6: a curvature centre, or a branch
+    point of two branches, depending on the profile's frame. Either way the arc is seen
+    once, by the node's fan up to where a branch's feet leave it (before: 4 free edges
+    at 5e-2 diag and a seam bounding two sheets; L = 3: a crack 8e-5 diag wide)."""
+    from medialcad.recognition import read_step, recognize
+
+    (revolved,) = read_step(Path(__file__).parent / "data" / "freecad_fuzz29_arc_centre_pass.step")
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
+    from OCP.gp import gp_Vec
+
+    rec = recognize(revolved)
+    prism = BRepPrimAPI_MakePrism(rec.profile, gp_Vec(*(length * rec.frame.zdir)))
+    solid = M.single_solid(prism.Shape())
+    result = M.extrusion_mat(solid)
+    rep = M.check(solid, result, f"FreeCAD fuzz 29 profile, L = {length:g}", n_complete=100)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())
+
+
+def test_a_contact_run_is_cut_where_a_branch_leaves_it() -> None:
+    """A node's contact run (loop coordinates 1 -> 3) loses the part a branch at the
+    node sweeps: from the branch's foot at the node the way its feet go, up to the next
+    cut (a fillet shorter than eps on the node's circle is part of the run: the feet
+    end at its joint); a foot within eps of the run's end is at it; feet elsewhere
+    leave the run whole."""
+    from medialcad.mat3d.segments import _uncovered
+
+    runs = [(1.0, 3.0)]
+    assert _uncovered(runs, [(2.0, 1.9, 2.9)], 10.0, 1e-3) == [(1.0, 2.0)]
+    assert _uncovered(runs, [(2.0, 1.2, 2.05)], 10.0, 1e-3) == [(2.0, 3.0)]
+    assert _uncovered(runs, [(1.0005, 1.0, 2.5)], 10.0, 1e-3) == []
+    assert _uncovered(runs, [(1.5, 1.4, 2.5), (2.5, 2.5, 2.7)], 10.0, 1e-3) == [(1.0, 1.5)]
+    assert _uncovered(runs, [(5.0, 4.0, 6.0)], 10.0, 1e-3) == runs
+    # a run past the loop's seam (length 10) and a foot given in [0, 10)
+    assert _uncovered([(9.0, 11.0)], [(0.5, 0.5, 0.9)], 10.0, 1e-3) == [(9.0, 10.5)]

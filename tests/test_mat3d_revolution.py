@@ -1986,3 +1986,18 @@ def test_revolution_of_an_ellipse_with_a_hole_near_its_end(angle_deg: float) -> 
     rep = check(solid, result, f"ellipse with a hole, {angle_deg:g} degrees", n_complete=100)
     print(rep.line())
     assert not rep.failures(), "; ".join(rep.failures())
+
+
+def test_revolution_through_an_arc_centre_found_within_the_tolerance() -> None:
+    """FreeCAD fuzz seed 29 (its STEP as FreeCAD wrote it): an arc-gon less a rectangle,
+    rounded +0.27/-0.55/+0.27, turned 337 degrees. Two branches meet at the centre of an
+    arc (radius 0.54) whose disk crosses the next arc by 6e-6: one of them winds round
+    the centre at 1e-5 while its feet sweep half the arc. Its caps started from a foot
+    0.4 of the arc from either end, inside the centre's fan: 4 free edges 2.8e-2 diag
+    off the boundary. Now the fan takes the sweep up to the branch's first foot past
+    the tolerance (:func:`medialcad.mat3d.segments._settled`)."""
+    (solid,) = read_step(Path(__file__).parent / "data" / "freecad_fuzz29_arc_centre_pass.step")
+    result = revolution_mat(solid)
+    rep = check(solid, result, "FreeCAD fuzz 29", n_complete=100)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())

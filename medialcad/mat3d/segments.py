@@ -22,7 +22,7 @@ from numpy.typing import NDArray
 from scipy.optimize import brentq, minimize_scalar
 
 from medialcad.mat2d.boundary import Boundary, EdgePiece, Element
-from medialcad.mat2d.graph import Branch, MedialGraph, NodeKind
+from medialcad.mat2d.graph import Branch, MedialGraph, Node, NodeKind
 from medialcad.mat2d.pocket import POCKET_LENGTH, golden_minima, pocket_rows
 from medialcad.mat2d.pocket import closed_period as _closed_period
 
@@ -195,25 +195,30 @@ def _degree(graph: MedialGraph, node: int) -> int:
     return sum((b.start == node) + (b.end == node) for b in graph.branches)
 
 
-def _node_end(graph: MedialGraph, node: int | None) -> End:
+def _node_end(graph: MedialGraph, boundary: Boundary, node: int | None) -> End:
     """The end of a branch at ``node`` (a closed branch's: its split). A curvature centre
     that more branches end at is a node they pass through (``"pass"``): no skeletal edge
     there, their sheets join as at a transition."""
     if node is None:
         return End("split")
-    kind = _end_kind(graph, node)
+    kind = _end_kind(graph, boundary, node)
     if kind is NodeKind.CURVATURE_CENTRE and _degree(graph, node) > 1:
         return End("pass", node, kind)
     return End("node", node, kind)
 
 
-def _end_kind(graph: MedialGraph, node: int) -> NodeKind:
+def _end_kind(graph: MedialGraph, boundary: Boundary, node: int) -> NodeKind:
     """The node's kind as an end of a branch: a "branch point" that ends a single branch
-    (a flat arc the 2D engine saw as many footpoints) is an end point, a curvature centre."""
-    kind = graph.nodes[node].kind
-    if kind is NodeKind.BRANCH_POINT and _degree(graph, node) == 1:
-        return NodeKind.CURVATURE_CENTRE
-    return kind
+    (a flat arc the 2D engine saw as many footpoints) is an end point, a curvature centre;
+    one two branches end at whose disk touches a whole element is a curvature centre
+    they pass through, found a branch point within the tolerance (FreeCAD fuzz seed 29:
+    a seam there bounded their two sheets only)."""
+    nd = graph.nodes[node]
+    if nd.kind is NodeKind.BRANCH_POINT:
+        degree = _degree(graph, node)
+        if degree == 1 or (degree == 2 and _touches_whole_element(graph, boundary, nd)):
+            return NodeKind.CURVATURE_CENTRE
+    return nd.kind
 
 
 def split_branches(
@@ -238,7 +243,9 @@ def split_branches(
     for nd in graph.nodes:
         if nd.index not in used and nd.kind is NodeKind.CURVATURE_CENTRE:
             out.extend(_fan(graph, boundary, nd.index, None))
-        elif nd.kind is NodeKind.CURVATURE_CENTRE and _degree(graph, nd.index) > 1:
+        elif (nd.kind is NodeKind.CURVATURE_CENTRE and _degree(graph, nd.index) > 1) or (
+            nd.kind is NodeKind.BRANCH_POINT and _touches_whole_element(graph, boundary, nd)
+        ):
             out.extend(_contact_fans(graph, boundary, nd.index))
     return [_unswing(_dedupe(s), graph.tol) for s in out]
 
@@ -520,7 +527,7 @@ def _fan_segments(
     nd = graph.nodes[node]
     r = nd.radius
     step = r * min(0.25, (2.0 * graph.tol / max(r, 1e-300)) ** 0.25)
-    end = End("node", node, NodeKind.CURVATURE_CENTRE)
+    end = End("node", node, _end_kind(graph, boundary, node))
     segs = []
     for s0, s1 in pieces:
         part = _loop_points(boundary, loop, s0, s1, step)
@@ -540,27 +547,36 @@ def _fan_segments(
     return segs
 
 
+def _on_circle(graph: MedialGraph, boundary: Boundary, nd: Node, e: Element) -> bool:
+    """Whether the whole edge element ``e`` lies on the disk's circle of node ``nd``."""
+    if e.piece is None or e.length <= 0:
+        return False
+    eps = max(10.0 * graph.tol, 1e-6 * boundary.diag)
+    pts = e.piece.curve.point(np.linspace(e.piece.t0, e.piece.t1, 9))
+    return bool(np.abs(np.linalg.norm(pts - nd.point_2d, axis=1) - nd.radius).max() <= eps)
+
+
+def _touches_whole_element(graph: MedialGraph, boundary: Boundary, nd: Node) -> bool:
+    """Whether a branch point's disk touches a whole element it has a footpoint on: a
+    curvature centre within the tolerance of being a branch point (FreeCAD fuzz seed 29,
+    found a curvature centre or a branch point depending on the profile's frame)."""
+    return any(_on_circle(graph, boundary, nd, boundary.elements[f.element]) for f in nd.footpoints)
+
+
 def _contact_fans(graph: MedialGraph, boundary: Boundary, node: int) -> list[Segment]:
-    """The fans of a curvature-centre node over every stretch of the boundary its disk
-    touches: runs of edge elements lying on its circle (within the tolerance), merged
-    where they join. The disk of a node two branches pass through touches the boundary
+    """The fans of a curvature-centre node (or a branch point within the tolerance of
+    being one) over every stretch of the boundary its disk touches: runs of edge
+    elements lying on its circle (within the tolerance), merged where they join, less
+    what the node's branches sweep (:func:`_uncovered`). The disk of a node two branches pass through touches the boundary
     along stretches apart from each other (the end arc of a slot cut in two by the part
     it sticks out of: the branch from the part reaches the arc's centre between two
     fillets, the slot's own branch goes on), which no single branch's feet bound."""
     nd = graph.nodes[node]
-    r = nd.radius
     eps = max(10.0 * graph.tol, 1e-6 * boundary.diag)
     out: list[Segment] = []
     for loop, length in enumerate(boundary.loop_lengths):
         els = sorted((e for e in boundary.elements if e.loop == loop), key=lambda e: e.s0)
-        on = []
-        for e in els:
-            if e.piece is None:
-                on.append(False)
-                continue
-            pts = e.piece.curve.point(np.linspace(e.piece.t0, e.piece.t1, 9))
-            gap = np.abs(np.linalg.norm(pts - nd.point_2d, axis=1) - r)
-            on.append(bool(e.length > 0 and gap.max() <= eps))
+        on = [_on_circle(graph, boundary, nd, e) for e in els]
         if not any(on):
             continue
         if all(on):
@@ -586,8 +602,139 @@ def _contact_fans(graph: MedialGraph, boundary: Boundary, node: int) -> list[Seg
                     cur = None
             if cur is not None:
                 runs.append((cur[0], cur[1]))
+        runs = _uncovered(runs, _branch_sweeps(graph, boundary, node, loop), length, eps)
         out.extend(_fan_segments(graph, boundary, node, loop, runs))
     return out
+
+
+def _branch_sweeps(
+    graph: MedialGraph, boundary: Boundary, node: int, loop: int
+) -> list[tuple[float, float, float]]:
+    """Where the feet of the branches at ``node`` start on ``loop`` and how far they move
+    along their first element: ``(s at the node, least s, greatest s)`` in loop
+    coordinates. The node's foot is the one :func:`_split` gives the branch's end."""
+    nd = graph.nodes[node]
+    out = []
+    for b in graph.branches:
+        n = len(b.points_2d)
+        for where, step, at in ((0, 1, b.start), (n - 1, -1, b.end)):
+            if at != node:
+                continue
+            for els, pars in (
+                (b.foot_a_element, b.foot_a_param),
+                (b.foot_b_element, b.foot_b_param),
+            ):
+                el = int(els[where])
+                e = boundary.elements[el]
+                if e.piece is None or e.loop != loop:
+                    continue
+                feet = b.foot_a_point if els is b.foot_a_element else b.foot_b_point
+                k = _settled(graph, boundary, b, where, els)
+                t0 = (
+                    float(pars[k])
+                    if k is not None
+                    else _node_foot(graph, boundary, nd, el, feet[where], float(pars[where]))[1]
+                )
+                run = [where if k is None else k]  # (the rows round the node: one foot)
+                while 0 <= run[-1] + step < n and int(els[run[-1] + step]) == el:
+                    run.append(run[-1] + step)
+                s = boundary.s_of(e, np.r_[t0, pars[run[1:]]])
+                out.append((float(s[0]), float(s.min()), float(s.max())))
+    return out
+
+
+def _uncovered(
+    runs: Sequence[tuple[float, float]],
+    sweeps: Sequence[tuple[float, float, float]],
+    length: float,
+    eps: float,
+) -> list[tuple[float, float]]:
+    """The contact runs cut at the branches' feet at the node, without the parts their
+    feet sweep on from there. The disk of a node whose circle a branch's feet leave on
+    (a branch between the node's arc and an element its disk touches at one point, the
+    disk within the tolerance of crossing it: FreeCAD fuzz seeds 29 and 106) sees that
+    stretch once, through the branch; a fan over it as well gave two sheets over one
+    stretch, each with edges free of the other."""
+    out = []
+    for s0, s1 in runs:
+        cuts, drop = [s0, s1], []
+        for at, lo, hi in sweeps:
+            shift = length * np.round((s0 - at) / length) if not s0 <= at <= s1 else 0.0
+            at, lo, hi = at + shift, lo + shift, hi + shift
+            if not s0 - eps <= at <= s1 + eps:
+                continue
+            if s0 + eps < at < s1 - eps:
+                cuts.append(at)
+            else:  # at an end of the run: the run is cut there already
+                at = s0 if at - s0 < s1 - at else s1
+            if max(hi - at, at - lo) > eps:  # the way they go (past the node's own
+                # element too: a fillet shorter than eps on the circle is in the run)
+                drop.append(0.5 * (at + (s1 if hi - at >= at - lo else s0)))
+        cuts = sorted(cuts)
+        for a, z in itertools.pairwise(cuts):
+            if z - a > 1e-12 * length and not any(a < x < z for x in drop):
+                out.append((a, z))
+    return out
+
+
+def _settled(
+    graph: MedialGraph, boundary: Boundary, b: Branch, where: int, els: NDArray[np.int64]
+) -> int | None:
+    """For a branch whose foot on one side, at its end ``where`` at a node, is on an
+    element lying whole on the node's circle: the first row (from that end) whose centre
+    is more than the tolerance from the node, with its foot on that element still.
+
+    Such a branch leaves a curvature centre within the tolerance of being a branch point
+    (FreeCAD fuzz seed 29: the disk crossed another element by 6e-6) and winds round the
+    node at 1e-5 while its feet sweep half the arc; the node's fan takes that sweep, the
+    branch starts from the foot of that row. ``None`` for other branches."""
+    node = b.start if where == 0 else b.end
+    if node is None:
+        return None
+    nd = graph.nodes[node]
+    el = int(els[where])
+    if not _on_circle(graph, boundary, nd, boundary.elements[el]):
+        return None
+    step = 1 if where == 0 else -1
+    k = where
+    n = len(b.points_2d)
+    while 0 <= k + step < n and int(els[k + step]) == el:
+        k += step
+        if float(np.linalg.norm(b.points_2d[k] - nd.point_2d)) > graph.tol:
+            return k
+    return None
+
+
+def _node_foot(
+    graph: MedialGraph, boundary: Boundary, nd: Node, element: int, foot: FloatArray, param: float
+) -> tuple[FloatArray, float]:
+    """A branch's foot (point, parameter) on ``element`` at its end at node ``nd``, from
+    the branch's own foot there (``foot``, ``param``): at a branch point the node's
+    footpoint on that element nearest to it, else the limit of the branch's feet, the
+    node's nearest point on the element; a reflex vertex's own point, exactly.
+
+    On an element lying whole on the node's circle every point is a foot of the node
+    and the one the tracer gives is arbitrary (a branch leaving a curvature centre
+    within the tolerance of being a branch point, FreeCAD fuzz seed 29, started 0.4 of
+    its arc from either end, or 3e-4 from the end where the node's other foot is): the
+    branch's feet sweep the element from one end, the nearer one, taken exactly."""
+    el = boundary.elements[element]
+    if el.vertex is not None:
+        return np.asarray(el.vertex, dtype=float), param
+    assert el.piece is not None
+    same = [f for f in nd.footpoints if f.element == element]
+    if nd.kind is NodeKind.BRANCH_POINT and same:
+        best = min(same, key=lambda f: float(np.linalg.norm(f.point_2d - foot)))
+        point = np.asarray(best.point_2d, dtype=float)
+        t = _foot_param(boundary, element, point, param)[1]
+    else:
+        point, t = _foot_param(boundary, element, nd.point_2d, param)
+    if _on_circle(graph, boundary, nd, el):
+        ends = np.array([el.piece.t0, el.piece.t1])
+        pe = el.piece.curve.point(ends)
+        k = int(np.argmin(np.linalg.norm(pe - point, axis=1)))
+        return np.asarray(pe[k], dtype=float), float(ends[k])
+    return point, t
 
 
 def _split(
@@ -618,21 +765,19 @@ def _split(
             fa[where] = fb[where] = nd.point_2d
             continue
         for feet, els, pars in ((fa, ea, b.foot_a_param), (fb, eb, b.foot_b_param)):
-            same = [f for f in nd.footpoints if f.element == els[where]]
-            if nd.kind is NodeKind.BRANCH_POINT and same:
-                best = min(same, key=lambda f: float(np.linalg.norm(f.point_2d - feet[where])))
-                feet[where] = best.point_2d
-            else:  # the limit of this side's feet: the node's nearest point on the element
-                feet[where] = _foot_on(boundary, int(els[where]), nd.point_2d, float(pars[where]))
-            el = boundary.elements[int(els[where])]
-            if el.vertex is not None:  # a reflex vertex: its own point, exactly
-                feet[where] = np.asarray(el.vertex, dtype=float)
+            k = _settled(graph, boundary, b, where, els)
+            if k is not None:  # the rows round the node take the first foot past them
+                feet[min(where, k) : max(where, k)] = feet[k]
+                continue
+            feet[where] = _node_foot(
+                graph, boundary, nd, int(els[where]), feet[where], float(pars[where])
+            )[0]
 
     # curvature-centre ends: the boundary stretch the node sees as a whole (an arc's fan),
     # or, at a curvature maximum, one common foot for both sides (no crack between them)
     fans: list[Segment] = []
     for where, node in ((0, b.start), (n - 1, b.end)):
-        if node is None or _end_kind(graph, node) is not NodeKind.CURVATURE_CENTRE:
+        if node is None or _end_kind(graph, boundary, node) is not NodeKind.CURVATURE_CENTRE:
             continue
         if _degree(graph, node) > 1:
             continue  # a node branches pass through: its fans are the node's own, once
@@ -779,8 +924,8 @@ def _split(
     # where each side changes element
     side_cuts = ([m[0] for m in merged if 0 in m[6]], [m[0] for m in merged if 1 in m[6]])
 
-    start_end = _node_end(graph, b.start)
-    stop_end = _node_end(graph, b.end)
+    start_end = _node_end(graph, boundary, b.start)
+    stop_end = _node_end(graph, boundary, b.end)
     bounds = [(0.0, start_end, ca[0], float(rad[0]), fa[0], fb[0])]
     bounds += [(m[0], End(m[1]), m[2], m[3], m[4], m[5]) for m in merged]
     bounds += [(1.0, stop_end, ca[-1], float(rad[-1]), fa[-1], fb[-1])]
@@ -988,13 +1133,13 @@ def _pocket(
     length = np.linalg.norm(np.diff(b.points_2d, axis=0), axis=1).sum()
     if length > POCKET_LENGTH * graph.tol:
         return None  # long: sampled, the general path (rows from its spline) is good
-    kinds = {_end_kind(graph, b.start), _end_kind(graph, b.end)}
+    kinds = {_end_kind(graph, boundary, b.start), _end_kind(graph, boundary, b.end)}
     if kinds != {NodeKind.BRANCH_POINT, NodeKind.CURVATURE_CENTRE}:
         return None
     el = int(b.foot_a_element[0])
     if not (np.all(b.foot_a_element == el) and np.all(b.foot_b_element == el)):
         return None
-    flip = _end_kind(graph, b.start) is NodeKind.BRANCH_POINT
+    flip = _end_kind(graph, boundary, b.start) is NodeKind.BRANCH_POINT
     bp, cc = (
         (graph.nodes[b.start], graph.nodes[b.end])
         if flip
