@@ -2001,3 +2001,24 @@ def test_revolution_through_an_arc_centre_found_within_the_tolerance() -> None:
     rep = check(solid, result, "FreeCAD fuzz 29", n_complete=100)
     print(rep.line())
     assert not rep.failures(), "; ".join(rep.failures())
+
+
+def test_revolution_through_a_branch_point_of_two_branches() -> None:
+    """FreeCAD fuzz seed 106 (its BREP as FreeCAD wrote it): a B-spline blob less a
+    rectangle, rounded -0.23/+0.23 by `makeOffset2D` (pieces 1e-3 and 1e-2 long), turned
+    214 degrees. A branch point that two branches end at (the third, shorter than the
+    tolerance, not traced) touches the rounding at feet 0.016 apart: the branches' caps
+    had a crack between them there (4 free edges 1.9e-2 diag off the boundary) and a
+    seam bounded two sheets. Now they pass through it, with a fan between their feet
+    (:func:`medialcad.mat3d.segments._gap_fans`)."""
+    (solid,) = read_step(Path(__file__).parent / "data" / "freecad_fuzz106_rounded_blob_turn.brep")
+    result = revolution_mat(solid)
+    graph = result.mat2d.graph
+    assert any(
+        n.kind.name == "BRANCH_POINT"
+        and sum((b.start == n.index) + (b.end == n.index) for b in graph.branches) == 2
+        for n in graph.nodes
+    )
+    rep = check(solid, result, "FreeCAD fuzz 106", n_complete=100)
+    print(rep.line())
+    assert not rep.failures(), "; ".join(rep.failures())

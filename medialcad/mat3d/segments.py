@@ -201,23 +201,21 @@ def _node_end(graph: MedialGraph, boundary: Boundary, node: int | None) -> End:
     there, their sheets join as at a transition."""
     if node is None:
         return End("split")
-    kind = _end_kind(graph, boundary, node)
+    kind = _end_kind(graph, node)
     if kind is NodeKind.CURVATURE_CENTRE and _degree(graph, node) > 1:
         return End("pass", node, kind)
     return End("node", node, kind)
 
 
-def _end_kind(graph: MedialGraph, boundary: Boundary, node: int) -> NodeKind:
+def _end_kind(graph: MedialGraph, node: int) -> NodeKind:
     """The node's kind as an end of a branch: a "branch point" that ends a single branch
     (a flat arc the 2D engine saw as many footpoints) is an end point, a curvature centre;
-    one two branches end at whose disk touches a whole element is a curvature centre
-    they pass through, found a branch point within the tolerance (FreeCAD fuzz seed 29:
-    a seam there bounded their two sheets only)."""
+    one that two branches end at is a node they pass through, like a curvature centre
+    (the third branch, shorter than the tolerance, was not traced: a seam there bounded
+    their two sheets only; FreeCAD fuzz seeds 29, 106 and 112)."""
     nd = graph.nodes[node]
-    if nd.kind is NodeKind.BRANCH_POINT:
-        degree = _degree(graph, node)
-        if degree == 1 or (degree == 2 and _touches_whole_element(graph, boundary, nd)):
-            return NodeKind.CURVATURE_CENTRE
+    if nd.kind is NodeKind.BRANCH_POINT and _degree(graph, node) <= 2:
+        return NodeKind.CURVATURE_CENTRE
     return nd.kind
 
 
@@ -244,9 +242,14 @@ def split_branches(
         if nd.index not in used and nd.kind is NodeKind.CURVATURE_CENTRE:
             out.extend(_fan(graph, boundary, nd.index, None))
         elif (nd.kind is NodeKind.CURVATURE_CENTRE and _degree(graph, nd.index) > 1) or (
-            nd.kind is NodeKind.BRANCH_POINT and _touches_whole_element(graph, boundary, nd)
+            nd.kind is NodeKind.BRANCH_POINT
+            and _degree(graph, nd.index) > 2
+            and _touches_whole_element(graph, boundary, nd)
         ):
             out.extend(_contact_fans(graph, boundary, nd.index))
+    for nd in graph.nodes:  # (after the branches: their segments' own feet at the node)
+        if nd.kind is NodeKind.BRANCH_POINT and _degree(graph, nd.index) == 2:
+            out.extend(_gap_fans(graph, boundary, nd.index, out))
     return [_unswing(_dedupe(s), graph.tol) for s in out]
 
 
@@ -527,7 +530,7 @@ def _fan_segments(
     nd = graph.nodes[node]
     r = nd.radius
     step = r * min(0.25, (2.0 * graph.tol / max(r, 1e-300)) ** 0.25)
-    end = End("node", node, _end_kind(graph, boundary, node))
+    end = End("node", node, _end_kind(graph, node))
     segs = []
     for s0, s1 in pieces:
         part = _loop_points(boundary, loop, s0, s1, step)
@@ -561,6 +564,46 @@ def _touches_whole_element(graph: MedialGraph, boundary: Boundary, nd: Node) -> 
     curvature centre within the tolerance of being a branch point (FreeCAD fuzz seed 29,
     found a curvature centre or a branch point depending on the profile's frame)."""
     return any(_on_circle(graph, boundary, nd, boundary.elements[f.element]) for f in nd.footpoints)
+
+
+def _gap_fans(
+    graph: MedialGraph, boundary: Boundary, node: int, segments: Sequence[Segment]
+) -> list[Segment]:
+    """The fans of a branch point two branches pass through (:func:`_end_kind`) over the
+    boundary between their segments' feet there where they differ: the node's disk
+    touches that stretch whole (FreeCAD fuzz seed 106: feet 0.016 apart on either side
+    of two pieces of a rounding, 1e-3 and 1e-2 long; without a fan between them the caps
+    of the two branches had a crack there). Only a stretch within the tolerance of the
+    disk's circle; none where the feet agree."""
+    nd = graph.nodes[node]
+    ends = []  # each segment's two feet at the node: (element, point)
+    for sg in segments:
+        if sg.single:
+            continue
+        for row, end in ((0, sg.start), (-1, sg.end)):
+            if end.node == node and end.kind in ("node", "pass"):
+                ends.append(((sg.element_a, sg.foot_a[row]), (sg.element_b, sg.foot_b[row])))
+    if len(ends) != 2:
+        return []
+    (a1, b1), (a2, b2) = ends
+    straight = np.linalg.norm(a1[1] - a2[1]) + np.linalg.norm(b1[1] - b2[1])
+    crossed = np.linalg.norm(a1[1] - b2[1]) + np.linalg.norm(b1[1] - a2[1])
+    pairs = [(a1, a2), (b1, b2)] if straight <= crossed else [(a1, b2), (b1, a2)]
+    eps = max(10.0 * graph.tol, 1e-6 * boundary.diag)
+    out: list[Segment] = []
+    for (e1, p1), (e2, p2) in pairs:
+        el1, el2 = boundary.elements[e1], boundary.elements[e2]
+        if float(np.linalg.norm(p1 - p2)) <= 1e-9 * boundary.diag or el1.loop != el2.loop:
+            continue
+        loop, length = el1.loop, boundary.loop_lengths[el1.loop]
+        s1 = float(boundary.s_of(el1, np.array([_project(boundary, e1, p1)[1]]))[0])
+        s2 = float(boundary.s_of(el2, np.array([_project(boundary, e2, p2)[1]]))[0])
+        lo, span = min((s1, (s2 - s1) % length), (s2, (s1 - s2) % length), key=lambda x: x[1])
+        pts = _loop_points(boundary, loop, lo, lo + span, max(span / 16.0, 1e-300))
+        if np.abs(np.linalg.norm(pts - nd.point_2d, axis=1) - nd.radius).max() > eps:
+            continue
+        out.extend(_fan_segments(graph, boundary, node, loop, [(lo, lo + span)]))
+    return out
 
 
 def _contact_fans(graph: MedialGraph, boundary: Boundary, node: int) -> list[Segment]:
@@ -777,7 +820,7 @@ def _split(
     # or, at a curvature maximum, one common foot for both sides (no crack between them)
     fans: list[Segment] = []
     for where, node in ((0, b.start), (n - 1, b.end)):
-        if node is None or _end_kind(graph, boundary, node) is not NodeKind.CURVATURE_CENTRE:
+        if node is None or _end_kind(graph, node) is not NodeKind.CURVATURE_CENTRE:
             continue
         if _degree(graph, node) > 1:
             continue  # a node branches pass through: its fans are the node's own, once
@@ -1133,13 +1176,13 @@ def _pocket(
     length = np.linalg.norm(np.diff(b.points_2d, axis=0), axis=1).sum()
     if length > POCKET_LENGTH * graph.tol:
         return None  # long: sampled, the general path (rows from its spline) is good
-    kinds = {_end_kind(graph, boundary, b.start), _end_kind(graph, boundary, b.end)}
+    kinds = {_end_kind(graph, b.start), _end_kind(graph, b.end)}
     if kinds != {NodeKind.BRANCH_POINT, NodeKind.CURVATURE_CENTRE}:
         return None
     el = int(b.foot_a_element[0])
     if not (np.all(b.foot_a_element == el) and np.all(b.foot_b_element == el)):
         return None
-    flip = _end_kind(graph, boundary, b.start) is NodeKind.BRANCH_POINT
+    flip = _end_kind(graph, b.start) is NodeKind.BRANCH_POINT
     bp, cc = (
         (graph.nodes[b.start], graph.nodes[b.end])
         if flip
