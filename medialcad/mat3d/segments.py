@@ -550,20 +550,31 @@ def _fan_segments(
     return segs
 
 
-def _on_circle(graph: MedialGraph, boundary: Boundary, nd: Node, e: Element) -> bool:
-    """Whether the whole edge element ``e`` lies on the disk's circle of node ``nd``."""
+def _on_circle(
+    graph: MedialGraph, boundary: Boundary, nd: Node, e: Element, strict: bool = False
+) -> bool:
+    """Whether the whole edge element ``e`` lies on the disk's circle of node ``nd``:
+    within ten tolerances; ``strict``: within the tolerance, and longer than a hundred
+    tolerances (an element a few tolerances long lies that near any circle tangent to
+    it: a fillet piece 0.018 long at a branch point's foot, FreeCAD fuzz seed 30)."""
     if e.piece is None or e.length <= 0:
         return False
     eps = max(10.0 * graph.tol, 1e-6 * boundary.diag)
+    if strict and e.length <= 10.0 * eps:
+        return False
     pts = e.piece.curve.point(np.linspace(e.piece.t0, e.piece.t1, 9))
-    return bool(np.abs(np.linalg.norm(pts - nd.point_2d, axis=1) - nd.radius).max() <= eps)
+    gap = np.abs(np.linalg.norm(pts - nd.point_2d, axis=1) - nd.radius).max()
+    return bool(gap <= (graph.tol if strict else eps))
 
 
 def _touches_whole_element(graph: MedialGraph, boundary: Boundary, nd: Node) -> bool:
     """Whether a branch point's disk touches a whole element it has a footpoint on: a
     curvature centre within the tolerance of being a branch point (FreeCAD fuzz seed 29,
     found a curvature centre or a branch point depending on the profile's frame)."""
-    return any(_on_circle(graph, boundary, nd, boundary.elements[f.element]) for f in nd.footpoints)
+    return any(
+        _on_circle(graph, boundary, nd, boundary.elements[f.element], strict=True)
+        for f in nd.footpoints
+    )
 
 
 def _gap_fans(
@@ -736,7 +747,7 @@ def _settled(
         return None
     nd = graph.nodes[node]
     el = int(els[where])
-    if not _on_circle(graph, boundary, nd, boundary.elements[el]):
+    if not _on_circle(graph, boundary, nd, boundary.elements[el], strict=True):
         return None
     step = 1 if where == 0 else -1
     k = where
@@ -772,7 +783,7 @@ def _node_foot(
         t = _foot_param(boundary, element, point, param)[1]
     else:
         point, t = _foot_param(boundary, element, nd.point_2d, param)
-    if _on_circle(graph, boundary, nd, el):
+    if _on_circle(graph, boundary, nd, el, strict=True):
         ends = np.array([el.piece.t0, el.piece.t1])
         pe = el.piece.curve.point(ends)
         k = int(np.argmin(np.linalg.norm(pe - point, axis=1)))
