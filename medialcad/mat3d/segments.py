@@ -195,7 +195,7 @@ def _degree(graph: MedialGraph, node: int) -> int:
     return sum((b.start == node) + (b.end == node) for b in graph.branches)
 
 
-def _node_end(graph: MedialGraph, boundary: Boundary, node: int | None) -> End:
+def _node_end(graph: MedialGraph, node: int | None) -> End:
     """The end of a branch at ``node`` (a closed branch's: its split). A curvature centre
     that more branches end at is a node they pass through (``"pass"``): no skeletal edge
     there, their sheets join as at a transition."""
@@ -621,10 +621,11 @@ def _contact_fans(graph: MedialGraph, boundary: Boundary, node: int) -> list[Seg
     """The fans of a curvature-centre node (or a branch point within the tolerance of
     being one) over every stretch of the boundary its disk touches: runs of edge
     elements lying on its circle (within the tolerance), merged where they join, less
-    what the node's branches sweep (:func:`_uncovered`). The disk of a node two branches pass through touches the boundary
-    along stretches apart from each other (the end arc of a slot cut in two by the part
-    it sticks out of: the branch from the part reaches the arc's centre between two
-    fillets, the slot's own branch goes on), which no single branch's feet bound."""
+    what the node's branches sweep (:func:`_uncovered`). The disk of a node two branches
+    pass through touches the boundary along stretches apart from each other (the end arc
+    of a slot cut in two by the part it sticks out of: the branch from the part reaches
+    the arc's centre between two fillets, the slot's own branch goes on), which no
+    single branch's feet bound."""
     nd = graph.nodes[node]
     eps = max(10.0 * graph.tol, 1e-6 * boundary.diag)
     out: list[Segment] = []
@@ -821,7 +822,7 @@ def _split(
         for feet, els, pars in ((fa, ea, b.foot_a_param), (fb, eb, b.foot_b_param)):
             k = _settled(graph, boundary, b, where, els)
             if k is not None:  # the rows round the node take the first foot past them
-                feet[min(where, k) : max(where, k)] = feet[k]
+                feet[slice(0, k) if where == 0 else slice(k + 1, n)] = feet[k]
                 continue
             feet[where] = _node_foot(
                 graph, boundary, nd, int(els[where]), feet[where], float(pars[where])
@@ -978,8 +979,8 @@ def _split(
     # where each side changes element
     side_cuts = ([m[0] for m in merged if 0 in m[6]], [m[0] for m in merged if 1 in m[6]])
 
-    start_end = _node_end(graph, boundary, b.start)
-    stop_end = _node_end(graph, boundary, b.end)
+    start_end = _node_end(graph, b.start)
+    stop_end = _node_end(graph, b.end)
     bounds = [(0.0, start_end, ca[0], float(rad[0]), fa[0], fb[0])]
     bounds += [(m[0], End(m[1]), m[2], m[3], m[4], m[5]) for m in merged]
     bounds += [(1.0, stop_end, ca[-1], float(rad[-1]), fa[-1], fb[-1])]
