@@ -241,11 +241,7 @@ def split_branches(
     for nd in graph.nodes:
         if nd.index not in used and nd.kind is NodeKind.CURVATURE_CENTRE:
             out.extend(_fan(graph, boundary, nd.index, None))
-        elif (nd.kind is NodeKind.CURVATURE_CENTRE and _degree(graph, nd.index) > 1) or (
-            nd.kind is NodeKind.BRANCH_POINT
-            and _degree(graph, nd.index) > 2
-            and _touches_whole_element(graph, boundary, nd)
-        ):
+        elif nd.kind is NodeKind.CURVATURE_CENTRE and _degree(graph, nd.index) > 1:
             out.extend(_contact_fans(graph, boundary, nd.index))
     for nd in graph.nodes:  # (after the branches: their segments' own feet at the node)
         if nd.kind is NodeKind.BRANCH_POINT and _degree(graph, nd.index) == 2:
@@ -567,14 +563,10 @@ def _on_circle(
     return bool(gap <= (graph.tol if strict else eps))
 
 
-def _touches_whole_element(graph: MedialGraph, boundary: Boundary, nd: Node) -> bool:
-    """Whether a branch point's disk touches a whole element it has a footpoint on: a
-    curvature centre within the tolerance of being a branch point (FreeCAD fuzz seed 29,
-    found a curvature centre or a branch point depending on the profile's frame)."""
-    return any(
-        _on_circle(graph, boundary, nd, boundary.elements[f.element], strict=True)
-        for f in nd.footpoints
-    )
+def _passed(graph: MedialGraph, node: int) -> bool:
+    """Whether branches pass through ``node``: a curvature centre or a branch point (see
+    :func:`_end_kind`) that two or more branches end at."""
+    return _end_kind(graph, node) is NodeKind.CURVATURE_CENTRE and _degree(graph, node) > 1
 
 
 def _gap_fans(
@@ -618,8 +610,7 @@ def _gap_fans(
 
 
 def _contact_fans(graph: MedialGraph, boundary: Boundary, node: int) -> list[Segment]:
-    """The fans of a curvature-centre node (or a branch point within the tolerance of
-    being one) over every stretch of the boundary its disk touches: runs of edge
+    """The fans of a curvature-centre node over every stretch of the boundary its disk touches: runs of edge
     elements lying on its circle (within the tolerance), merged where they join, less
     what the node's branches sweep (:func:`_uncovered`). The disk of a node two branches
     pass through touches the boundary along stretches apart from each other (the end arc
@@ -748,7 +739,9 @@ def _settled(
         return None
     nd = graph.nodes[node]
     el = int(els[where])
-    if not _on_circle(graph, boundary, nd, boundary.elements[el], strict=True):
+    if not _passed(graph, node) or not _on_circle(
+        graph, boundary, nd, boundary.elements[el], strict=True
+    ):
         return None
     step = 1 if where == 0 else -1
     k = where
@@ -768,8 +761,9 @@ def _node_foot(
     footpoint on that element nearest to it, else the limit of the branch's feet, the
     node's nearest point on the element; a reflex vertex's own point, exactly.
 
-    On an element lying whole on the node's circle every point is a foot of the node
-    and the one the tracer gives is arbitrary (a branch leaving a curvature centre
+    On an element lying whole on the circle of a node branches pass through
+    (:func:`_passed`) every point is a foot of the node and the one the tracer gives is
+    arbitrary (a branch leaving a curvature centre
     within the tolerance of being a branch point, FreeCAD fuzz seed 29, started 0.4 of
     its arc from either end, or 3e-4 from the end where the node's other foot is): the
     branch's feet sweep the element from one end, the nearer one, taken exactly."""
@@ -784,7 +778,7 @@ def _node_foot(
         t = _foot_param(boundary, element, point, param)[1]
     else:
         point, t = _foot_param(boundary, element, nd.point_2d, param)
-    if _on_circle(graph, boundary, nd, el, strict=True):
+    if _passed(graph, nd.index) and _on_circle(graph, boundary, nd, el, strict=True):
         ends = np.array([el.piece.t0, el.piece.t1])
         pe = el.piece.curve.point(ends)
         k = int(np.argmin(np.linalg.norm(pe - point, axis=1)))
