@@ -121,7 +121,6 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
         DegenerateFaceError: the input cannot be handled.
         ComputationError: an internal failure.
     """
-    from medialcad.mat2d.trace import TraceSettings, trace_medial_graph
     from medialcad.occ.face2d import planar_face
 
     try:
@@ -130,9 +129,15 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
         raise InputError(f"tol must be a positive number, got {tol!r}") from err
     if tol_abs is not None and (not np.isfinite(tol_abs) or tol_abs <= 0):
         raise InputError(f"tol must be a positive number, got {tol!r}")
-    pf = planar_face(face)
-    if tol_abs is None:
-        tol_abs = 1e-5 * pf.diag
+    return medial_axis_of_planar(planar_face(face), tol_abs)
+
+
+def medial_axis_of_planar(pf: Any, tol: float | None) -> MedialAxis2D:
+    """:func:`medial_axis_2d` of a face already read into exact curves
+    (a :class:`medialcad.occ.face2d.PlanarFace`)."""
+    from medialcad.mat2d.trace import TraceSettings, trace_medial_graph
+
+    tol_abs = 1e-5 * pf.diag if tol is None else tol
     try:
         boundary = build_boundary(pf.loops, gap_tol=pf.gap_tol, angle_tol=ANGLE_TOL, tol=tol_abs)
         _check_simple(boundary)

@@ -6,7 +6,8 @@ The descriptions are frozen dataclasses; the B-rep analysis that produces them l
 Canonical frames (THEORY.md):
 
 - extrusion: the profile lies in ``z = 0`` of :attr:`Extrusion.frame` and the solid is
-  ``profile x [0, length]`` along ``frame.zdir`` (= :attr:`Extrusion.direction`);
+  ``profile x [0, length]`` along ``frame.zdir`` (= :attr:`Extrusion.direction`); an
+  oblique prism's caps lie across the direction at a slant (:attr:`Extrusion.cap_normal`);
 - revolution: the profile lies in the half-plane ``x >= 0`` of the frame's ``xy``-plane
   and the solid is swept by rotating it about ``frame.ydir`` (= the axis direction, right
   hand) from 0 to :attr:`Revolution.angle`.
@@ -34,14 +35,19 @@ FloatArray = NDArray[np.float64]
 
 @dataclass(frozen=True)
 class Extrusion:
-    """A right extrusion ``profile x [0, length]``.
+    """An extrusion: a right prism ``profile x [0, length]``, or an oblique one (a
+    profile swept along a slanted vector: sides along ``direction``, caps in two
+    parallel planes with normal ``cap_normal``).
 
     Attributes:
         direction: unit extrusion direction in model space (from the profile's cap to
-            the other one).
-        length: distance between the caps.
+            the other one): the direction of the side faces' rulings.
+        length: how far the sweep goes along ``direction`` (the distance between the
+            caps for a right prism; ``height / cos`` of the slant for an oblique one).
         profile: the exact planar profile face (``TopoDS_Face``) in model space: a cap of
-            the solid, or the cap faces merged when the cap is split.
+            the solid, or the cap faces merged when the cap is split. For an oblique
+            prism, its cross-section across ``direction`` through ``frame.origin`` (the
+            cap projected along ``direction``: exact, its curves as B-splines).
         frame: maps canonical coordinates (profile in ``z = 0``, extrusion along ``+z``)
             to model space.
         tolerance: the largest deviation from an exact extrusion measured on the B-rep
@@ -50,6 +56,10 @@ class Extrusion:
         solid: the ``TopoDS_Solid`` it describes; diag: its bounding-box diagonal.
         brep_tolerance: the largest tolerance the B-rep records on its vertices, edges
             and faces: how far apart its faces may lie where they meet.
+        cap_normal: an oblique prism's unit cap normal (``cap_normal @ direction > 0``);
+            ``None`` for a right prism. ``frame.origin`` lies on the bottom cap.
+        cap: an oblique prism's bottom cap face (the exact curves its cross-section is
+            computed from); ``None`` for a right prism (``profile`` is its cap).
     """
 
     direction: FloatArray
@@ -61,8 +71,17 @@ class Extrusion:
     solid: Any = None
     diag: float = 0.0
     brep_tolerance: float = 0.0
+    cap_normal: FloatArray | None = None
+    cap: Any = None
 
     kind = "extrusion"
+
+    @property
+    def height(self) -> float:
+        """Distance between the caps' planes (``length`` for a right prism)."""
+        if self.cap_normal is None:
+            return float(self.length)
+        return float(self.length * (self.cap_normal @ self.direction))
 
 
 @dataclass(frozen=True)

@@ -381,11 +381,24 @@ def test_the_rule_picks_these_readings() -> None:
 
 
 @pytest.mark.parametrize(("folder", "entry"), OBLIQUE)
-def test_oblique_extrusion_is_refused(folder: Path, entry: dict[str, Any]) -> None:
-    """Only right extrusions are supported (the MAT needs caps perpendicular to the sides)."""
+def test_oblique_extrusion_is_read_with_its_caps_slant(folder: Path, entry: dict[str, Any]) -> None:
+    """A profile swept along a slanted vector: sides along the direction, caps parallel
+    to the profile's plane. A parallelepiped is such a prism along each of its edges'
+    directions; any one is a correct reading, with the caps it implies."""
     (solid,) = _solids(folder / entry["file"])
-    with pytest.raises(NotExtrusionOrRevolutionError, match=r"face \d+ \("):
-        recognize(solid)
+    rec = recognize(solid)
+    assert isinstance(rec, Extrusion) and rec.cap_normal is not None
+    sweep = np.array(entry["facts"]["sweep_vector"], dtype=float)
+    normal = np.array(entry["profile_normal"], dtype=float)
+    if abs(abs(rec.direction @ sweep) / np.linalg.norm(sweep) - 1.0) < REL:
+        assert abs(abs(rec.cap_normal @ normal) - 1.0) < REL
+        assert rec.length == pytest.approx(entry["length"], rel=REL)
+        assert rec.height == pytest.approx(entry["facts"]["height"], rel=REL)
+    # whichever reading: cap area x height is the volume, the caps slant along the sides
+    assert rec.cap_normal @ rec.direction > 0
+    assert rec.cap_normal @ rec.direction < 1.0 - 1e-6
+    area, _ = _area_centroid(rec.cap)
+    assert area * rec.height == pytest.approx(entry["measured"]["volume"], rel=VOLUME_REL)
 
 
 def test_negatives_are_the_expected_files() -> None:

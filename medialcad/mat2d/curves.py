@@ -12,7 +12,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import BSpline
 
-__all__ = ["CircleCurve", "Curve", "EllipseCurve", "LineCurve", "NurbsCurve", "OffsetCurve"]
+__all__ = [
+    "AffineCurve",
+    "CircleCurve",
+    "Curve",
+    "EllipseCurve",
+    "LineCurve",
+    "NurbsCurve",
+    "OffsetCurve",
+    "linear_image",
+]
 
 FloatArray = NDArray[np.float64]
 Derivs = tuple[FloatArray, FloatArray, FloatArray]
@@ -89,6 +98,10 @@ class CircleCurve(Curve):
 
 @dataclass(frozen=True)
 class EllipseCurve(Curve):
+    """``center + cos t major xaxis + sin t minor yaxis``: the axes are unit vectors,
+    perpendicular for an OCC ellipse; a linear image of a circle or an ellipse keeps
+    its parameter on conjugate semi-diameters, which need not be."""
+
     center: FloatArray
     major: float
     minor: float
@@ -192,3 +205,57 @@ class OffsetCurve(Curve):
             return np.column_stack([v[:, 1], -v[:, 0]])
 
         return b + d * turn(u), b1 + d * turn(u1), b2 + d * turn(u2)
+
+
+@dataclass(frozen=True)
+class AffineCurve(Curve):
+    """``matrix @ inner(t)``: the image of a curve under a linear map of the plane, on
+    the inner curve's parameter (for curves whose image has no closed form of the same
+    kind: an offset curve's image is no offset curve)."""
+
+    inner: Curve
+    matrix: FloatArray  # (2, 2)
+
+    @property
+    def period(self) -> float | None:
+        if isinstance(self.inner, (CircleCurve, EllipseCurve)):
+            return 2.0 * np.pi
+        return getattr(self.inner, "period", None)
+
+    def derivs(self, t: ArrayLike) -> Derivs:
+        p, d1, d2 = self.inner.derivs(t)
+        a = self.matrix.T
+        return p @ a, d1 @ a, d2 @ a
+
+    def derivs3(self, t: ArrayLike) -> Derivs3:
+        p, d1, d2, d3 = self.inner.derivs3(t)
+        a = self.matrix.T
+        return p @ a, d1 @ a, d2 @ a, d3 @ a
+
+
+def _unit(v: FloatArray) -> tuple[FloatArray, float]:
+    n = float(np.linalg.norm(v))
+    return v / n, n
+
+
+def linear_image(curve: Curve, matrix: ArrayLike) -> tuple[Curve, float]:
+    """The image of ``curve`` under the invertible linear map ``matrix`` (2 x 2), exact,
+    and the factor its parameter is scaled by (a line's is its arc length; every other
+    kind keeps its parameter): lines stay lines, circles and ellipses become ellipses
+    on conjugate semi-diameters, B-splines map their poles, anything else is wrapped."""
+    a = np.asarray(matrix, dtype=float)
+    if isinstance(curve, LineCurve):
+        d, speed = _unit(a @ curve.direction)
+        return LineCurve(a @ curve.origin, d), speed
+    if isinstance(curve, CircleCurve):
+        x, rx = _unit(curve.radius * (a @ curve.xaxis))
+        y, ry = _unit(curve.radius * (a @ curve.yaxis))
+        return EllipseCurve(a @ curve.center, rx, ry, x, y), 1.0
+    if isinstance(curve, EllipseCurve):
+        x, rx = _unit(curve.major * (a @ curve.xaxis))
+        y, ry = _unit(curve.minor * (a @ curve.yaxis))
+        return EllipseCurve(a @ curve.center, rx, ry, x, y), 1.0
+    if isinstance(curve, NurbsCurve):
+        poles = curve.poles @ a.T
+        return NurbsCurve(curve.knots, poles, curve.weights, curve.degree, curve.period), 1.0
+    return AffineCurve(curve, a), 1.0

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import time
 from typing import Any
 
@@ -58,12 +59,26 @@ def medial_axis_of(
     if isinstance(reading, Revolution) and not reading.full:
         _refuse_pinched_slice(reading, max(tol_abs, 10.0 * reading.brep_tolerance))
     t0 = time.perf_counter()
-    mat2d = medial_axis_2d(reading.profile, tol=tol_abs)
+    tol_2d = tol_abs * _shear_contraction(reading)
+    if isinstance(reading, Extrusion) and reading.cap_normal is not None:
+        from medialcad.api import medial_axis_of_planar
+        from medialcad.occ.face2d import sheared_planar_face
+
+        section = sheared_planar_face(
+            reading.cap,
+            reading.frame.origin,
+            reading.direction,
+            reading.cap_normal,
+            reading.profile,
+        )
+        mat2d = medial_axis_of_planar(section, tol_2d)
+    else:
+        mat2d = medial_axis_2d(reading.profile, tol=tol_abs)
     timings["mat2d"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     try:
         if isinstance(reading, Extrusion):
-            parts = _extrusion(reading, mat2d, diag, tol_abs)
+            parts = _extrusion(reading, mat2d, diag, tol_2d)
         else:
             from medialcad.mat3d.revolution import revolution_parts
 
@@ -92,28 +107,52 @@ def medial_axis_of(
     )
 
 
+def _shear_contraction(reading: Extrusion | Revolution) -> float:
+    """How much finer than the 3D tolerance the profile's MAT is traced: an oblique
+    prism's shear ``(p, z) -> (p, k.p + z / cos)`` (``|k| = tan``) stretches distances
+    by at most ``sqrt(1 + sin) / cos``, its largest singular value; 1 otherwise."""
+    if not isinstance(reading, Extrusion) or reading.cap_normal is None:
+        return 1.0
+    cos = float(reading.cap_normal @ reading.direction)
+    sin = math.sqrt(max(0.0, 1.0 - cos * cos))
+    return cos / math.sqrt(1.0 + sin)
+
+
 def _roles(key: tuple) -> str | None:
     return {"SB": "seam", "ST": "seam", "OFF": "seam", "F0": "rim", "FL": "rim"}.get(key[0])
 
 
 def _extrusion(reading: Extrusion, mat2d: Any, diag: float, tol: float) -> tuple:
-    L = reading.length
+    """A right prism's MAT from its profile's; an oblique prism's is the image of the
+    right prism's on its cross-section, of its caps' distance (THEORY.md Sec. 1), under
+    the shear that slants the caps: the distance to a side is the cross-section's, to a
+    cap the height above its plane, so the shear carries the distance function, hence
+    its ridge and its values (the radius), over exactly."""
+    H = reading.height
     d = reading.direction
+    m = reading.cap_normal if reading.cap_normal is not None else d
+    cos = float(m @ d)
+    origin = reading.frame.origin
     frame = mat2d.frame
-    h = 0.5 * L
+    h = 0.5 * H
     level = h if mat2d.rmax > h + tol else None
     segments = split_branches(mat2d.graph, mat2d.boundary, level)
 
     def to_model(p: FloatArray) -> FloatArray:
         p = np.asarray(p, dtype=float)
-        return np.asarray(frame.to_3d(p[:, :2]) + p[:, 2:3] * d)
+        x = frame.to_3d(p[:, :2])
+        # along d from the cross-section up to the bottom cap, then the height's share
+        t = (p[:, 2] - (x - origin) @ m) / cos
+        return np.asarray(x + t[:, None] * d)
 
     patches, offsets, lines, junctions = extrusion_rows(
-        segments, to_model, L, level, mat2d.boundary
+        segments, to_model, H, level, mat2d.boundary
     )
     mid = None
     if level is not None:
-        mid = (frame.origin + h * d, frame.xdir, frame.ydir)
+        u = frame.xdir - (frame.xdir @ m) * m
+        u = u / np.linalg.norm(u)
+        mid = (origin + (h / cos) * d, u, np.cross(m, u))
     return build_complex(
         patches,
         offsets,

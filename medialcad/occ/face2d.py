@@ -57,11 +57,12 @@ from medialcad.mat2d.curves import (
     LineCurve,
     NurbsCurve,
     OffsetCurve,
+    linear_image,
 )
 from medialcad.occ.io import is_occ_exception, occ_guard
 from medialcad.occ.shapes import single_face
 
-__all__ = ["PlanarFace", "planar_face"]
+__all__ = ["PlanarFace", "planar_face", "sheared_planar_face"]
 
 
 @dataclass(frozen=True)
@@ -411,3 +412,40 @@ def planar_face(obj: Any, plane_tol: float | None = None) -> PlanarFace:
         gap_tol = max(gap_tol, BRep_Tool.Tolerance_s(TopoDS.Vertex_s(vexp.Current())))
         vexp.Next()
     return PlanarFace(face, frame, loops, edges, diag, max(gap_tol * 4, 1e-7 * diag))
+
+
+def sheared_planar_face(
+    cap: Any, origin: np.ndarray, d: np.ndarray, m: np.ndarray, display: TopoDS_Face
+) -> PlanarFace:
+    """An oblique prism's cross-section across its direction ``d``, exact: the planar
+    ``cap`` (normal ``m``, through ``origin``) projected along ``d`` onto the plane
+    through ``origin`` across ``d``. The projection is linear on the cap's plane, so each
+    of the cap's exact curves maps to an exact curve (:func:`linear_image`); ``display``
+    is the same section as an OCC face (its curves converted, for drawing)."""
+    pf = planar_face(cap)
+    lin = np.eye(3) + np.outer(d, m - d)  # the projection on the cap's plane
+    o_q = origin + lin @ (pf.frame.origin - origin)
+    mx, my = lin @ pf.frame.xdir, lin @ pf.frame.ydir
+    x_q = mx / np.linalg.norm(mx)
+    y_q = np.cross(d, x_q)
+    a = np.array([[x_q @ mx, x_q @ my], [y_q @ mx, y_q @ my]])
+    if np.linalg.det(a) < 0:  # keep the loops' sense of turning
+        y_q = -y_q
+        a[1] = -a[1]
+    loops = []
+    for loop in pf.loops:
+        out = []
+        for piece in loop:
+            curve, scale = linear_image(piece.curve, a)
+            out.append(EdgePiece(curve, piece.t0 * scale, piece.t1 * scale, piece.edge_index))
+        loops.append(out)
+    lo, hi = _bbox(display)
+    stretch = float(np.linalg.norm(a, 2))
+    return PlanarFace(
+        display,
+        Frame(o_q, x_q, y_q),
+        loops,
+        pf.edges,
+        float(np.linalg.norm(hi - lo)),
+        pf.gap_tol * stretch,
+    )

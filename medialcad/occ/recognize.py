@@ -33,7 +33,11 @@ from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
 from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_NurbsConvert
+from OCP.BRepBuilderAPI import (
+    BRepBuilderAPI_GTransform,
+    BRepBuilderAPI_MakeFace,
+    BRepBuilderAPI_NurbsConvert,
+)
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools
@@ -50,7 +54,7 @@ from OCP.GeomAbs import (
 )
 from OCP.GeomAdaptor import GeomAdaptor_Surface
 from OCP.GeomLib import GeomLib_IsPlanarSurface
-from OCP.gp import gp_Ax3, gp_Dir, gp_Pln, gp_Pnt, gp_Vec
+from OCP.gp import gp_Ax3, gp_Dir, gp_GTrsf, gp_Pln, gp_Pnt, gp_Vec
 from OCP.GProp import GProp_GProps
 from OCP.ShapeAnalysis import ShapeAnalysis_ShapeTolerance
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
@@ -242,30 +246,58 @@ def _describe(f: _FaceData) -> str:
 @dataclass(frozen=True)
 class _ExtrusionReading:
     direction: FloatArray
-    h0: float
+    h0: float  # the caps' heights along ``cap_normal``
     h1: float
     bottom: list[_FaceData]
     deviation: float
+    cap_normal: FloatArray  # unit, ``cap_normal @ direction > 0``; = direction if right
+
+    @property
+    def oblique(self) -> bool:
+        return bool(np.any(self.cap_normal != self.direction))
+
+
+def _cap_normal(data: list[_FaceData], d: FloatArray, ang_tol: float) -> FloatArray | None:
+    """The caps' common normal for sides along ``d``: ``d`` itself when a plane lies
+    across ``d`` (a right prism), else the normal of the largest plane not along ``d``
+    (an oblique prism), oriented along ``d``; ``None`` without such a plane."""
+    across = [
+        f for f in data if f.kind == "plane" and f.axis is not None and abs(f.axis[1] @ d) > ang_tol
+    ]
+    if not across:
+        return None
+    if any(abs(abs(float(f.axis[1] @ d)) - 1.0) < ang_tol**2 for f in across if f.axis is not None):
+        return d
+    big = max(across, key=lambda f: f.area)
+    assert big.axis is not None
+    m = _unit(big.axis[1])
+    return m if float(m @ d) > 0 else -m
 
 
 def _check_extrusion(
     data: list[_FaceData], d: FloatArray, lin_tol: float, ang_tol: float
 ) -> _ExtrusionReading | str:
+    """Whether the solid is a prism along ``d``: every face either a side (all its
+    normals across ``d``) or a planar cap, the caps in two parallel planes. The caps may
+    lie obliquely to ``d`` (a profile swept along a slanted vector)."""
+    m = _cap_normal(data, d, ang_tol)
+    if m is None:
+        return "no planar cap across the direction"
     caps: list[tuple[_FaceData, float]] = []
     sides: list[_FaceData] = []
     dev = 0.0
     for f in data:
-        if f.kind == "plane" and f.axis is not None and abs(abs(f.axis[1] @ d) - 1.0) < ang_tol**2:
-            caps.append((f, float(f.axis[0] @ d)))
+        if f.kind == "plane" and f.axis is not None and abs(abs(f.axis[1] @ m) - 1.0) < ang_tol**2:
+            caps.append((f, float(f.axis[0] @ m)))
             continue
         if len(f.normals) == 0:
             return f"{_describe(f)} has no usable normal"
         c = float(np.abs(f.normals @ d).max())
         if c > ang_tol:
-            return f"{_describe(f)} is neither parallel nor perpendicular to the direction"
+            if np.all(m == d):
+                return f"{_describe(f)} is neither parallel nor perpendicular to the direction"
+            return f"{_describe(f)} is neither along the direction nor parallel to the caps"
         sides.append(f)
-    if not caps:
-        return "no planar cap perpendicular to the direction"
     heights = np.array([h for _, h in caps])
     h0, h1 = float(heights.min()), float(heights.max())
     if h1 - h0 < lin_tol:
@@ -286,9 +318,9 @@ def _check_extrusion(
             if out < 0:
                 return f"{_describe(f)} faces into the solid at its top cap"
             top.append(f)
-        dev = max(dev, float(np.abs(f.vertices @ d - h).max()) if len(f.vertices) else 0.0)
+        dev = max(dev, float(np.abs(f.vertices @ m - h).max()) if len(f.vertices) else 0.0)
     for f in sides:
-        hv = f.vertices @ d
+        hv = f.vertices @ m
         if len(hv) and (hv.min() < h0 - lin_tol or hv.max() > h1 + lin_tol):
             return f"{_describe(f)} reaches past the caps"
         dev = max(
@@ -300,20 +332,64 @@ def _check_extrusion(
     area_t = sum(f.area for f in top)
     if abs(area_b - area_t) > 1e-6 * max(area_b, area_t) + lin_tol * math.sqrt(max(area_b, 1e-300)):
         return "the two caps differ in area"
-    return _ExtrusionReading(d, h0, h1, bottom, dev)
+    return _ExtrusionReading(d, h0, h1, bottom, dev, m)
 
 
 def _extrusion_candidates(data: list[_FaceData]) -> list[FloatArray]:
+    """Directions to try, most likely first: the axes of the largest planes, cylinders
+    and extruded surfaces (right prisms; the rulings of oblique ones), then the
+    crossings of the largest planes two by two (the sides of an oblique polygonal prism)."""
     cands: list[FloatArray] = []
     ranked = sorted(data, key=lambda f: -f.area)
     for f in ranked:
         if f.axis is not None and f.kind in ("plane", "cylinder", "extrusion"):
             cands.append(_unit(f.axis[1]))
+    planes = [f.axis[1] for f in ranked if f.kind == "plane" and f.axis is not None]
+    normals: list[FloatArray] = []
+    for n in planes:
+        if all(np.linalg.norm(np.cross(n, o)) > 1e-6 for o in normals):
+            normals.append(_unit(n))
+        if len(normals) == _CROSSED_PLANES:
+            break
+    for i, a in enumerate(normals):
+        for b in normals[i + 1 :]:
+            cands.append(_unit(np.cross(a, b)))
     out: list[FloatArray] = []
     for c in cands:
         if all(abs(abs(float(c @ o)) - 1.0) > 1e-9 for o in out):
             out.append(c)
     return out
+
+
+_CROSSED_PLANES = 6
+"""How many of the largest planes' normals are crossed for oblique prism directions."""
+
+
+def _sheared_profile(
+    profile: TopoDS_Face, origin: FloatArray, d: FloatArray, m: FloatArray
+) -> TopoDS_Face:
+    """The oblique prism's cross-section across ``d`` through ``origin``, as an OCC
+    face (for drawing; the MAT maps the cap's exact curves itself,
+    :func:`medialcad.occ.face2d.sheared_planar_face`): the cap ``profile`` (in the plane
+    through ``origin`` with normal ``m``) projected along ``d``. The affine map
+    ``x -> x - (d.x) d + (m.x) d`` (about ``origin``) is that projection on the cap's
+    plane and invertible (its determinant is ``m.d``); OCC converts the curves to
+    B-splines to map them (approximating offset curves)."""
+    lin = np.eye(3) + np.outer(d, m - d)
+    shift = origin - lin @ origin
+    g = gp_GTrsf()
+    for i in range(3):
+        for j in range(3):
+            g.SetValue(i + 1, j + 1, float(lin[i, j]))
+        g.SetValue(i + 1, 4, float(shift[i]))
+    with occ_guard("projecting the oblique prism's cap across its direction"):
+        mk = BRepBuilderAPI_GTransform(profile, g, True)
+        if not mk.IsDone():
+            raise NotExtrusionOrRevolutionError("OCC could not project the oblique prism's cap")
+        got = faces(mk.Shape())
+    if len(got) != 1:
+        raise NotExtrusionOrRevolutionError("projecting the oblique prism's cap gave no face")
+    return got[0]
 
 
 # --------------------------------------------------------------------------- revolution
@@ -712,7 +788,7 @@ def _recognize_extrusion(
     volume: float,
     reasons: list[str],
 ) -> Extrusion | None:
-    best: tuple[float, Extrusion] | None = None
+    best: tuple[tuple[bool, float], Extrusion] | None = None
     first_reason = None
     for d in _extrusion_candidates(data):
         got = _check_extrusion(data, d, lin_tol, ang_tol)
@@ -724,17 +800,34 @@ def _recognize_extrusion(
         except MedialCadError as err:
             first_reason = first_reason or f"not an extrusion ({err})"
             continue
-        length = got.h1 - got.h0
+        height = got.h1 - got.h0
         area, centroid = _area_centroid(profile)
-        if abs(area * length - volume) > VOLUME_RTOL * volume:
+        if abs(area * height - volume) > VOLUME_RTOL * volume:
             first_reason = first_reason or "not an extrusion (volume differs from area x length)"
             continue
+        m, oblique = got.cap_normal, got.oblique
+        origin = centroid - (centroid @ m - got.h0) * m
         xdir = _perp(d)
-        origin = centroid - (centroid @ d - got.h0) * d
         frame = Frame(origin, xdir, np.cross(d, xdir))
-        reading = Extrusion(d, length, profile, frame, max(got.deviation, 0.0))
-        if best is None or area > best[0] * (1 + 1e-9):
-            best = (area, reading)
+        cap_normal, cap = None, None
+        if oblique:
+            try:
+                profile, cap = _sheared_profile(profile, origin, d, m), profile
+            except MedialCadError as err:
+                first_reason = first_reason or f"not an extrusion ({err})"
+                continue
+            cap_normal = m
+        length = height / float(m @ d)
+        reading = Extrusion(
+            d, length, profile, frame, max(got.deviation, 0.0), cap_normal=cap_normal, cap=cap
+        )
+        # a right reading before an oblique one, then the largest cap
+        if (
+            best is None
+            or best[0][0] > oblique
+            or (best[0][0] == oblique and area > best[0][1] * (1 + 1e-9))
+        ):
+            best = ((oblique, area), reading)
     if best is None:
         reasons.append(first_reason or "not an extrusion (no candidate direction)")
         return None
