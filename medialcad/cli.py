@@ -299,7 +299,10 @@ class _Pictures:
 def _recognition_fields(mat: Any) -> dict[str, Any]:
     rec = mat.recognition
     if mat.kind == "extrusion":
-        return {"direction": _floats(rec.direction), "length": float(rec.length)}
+        out = {"direction": _floats(rec.direction), "length": float(rec.length)}
+        if rec.cap_normal is not None:  # an oblique prism
+            out.update(cap_normal=_floats(rec.cap_normal), height=float(rec.height))
+        return out
     return {
         "axis_point": _floats(rec.axis_point),
         "axis_direction": _floats(rec.axis_direction),

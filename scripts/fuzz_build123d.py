@@ -3,7 +3,8 @@
 A sketch is a base shape (rectangle, regular polygon, circle, ellipse, slot, trapezoid or
 a random polygon) with zero to two random circles, rectangles, slots or polygons cut out
 of it or added to it, some of its vertices filleted, sometimes offset (arcs at its
-corners); it is extruded, or revolved (5 to 359 degrees or a full turn) about an axis
+corners); it is extruded (along its normal, or 5 to 60 degrees off it: an oblique prism;
+seeds drawing one of these were right prisms before 2026-12-07), or revolved (5 to 359 degrees or a full turn) about an axis
 beside it or through its leftmost point (a profile touching its axis: at a vertex, along
 an edge, or tangent to it, a pinched solid), then turned and moved at random. Sketches
 that build123d cannot build as one face are skipped.
@@ -112,7 +113,13 @@ def solid(r: random.Random, face: Any) -> tuple[Any, str]:
     """The face extruded or revolved, turned and moved; and a label."""
     bb = face.bounding_box()
     d = bb.diagonal
-    if r.random() < 0.5:
+    u = r.random()
+    if u < 0.2:  # along a vector 5 to 60 degrees off the normal: an oblique prism
+        tilt, turn = math.radians(r.uniform(5.0, 60.0)), r.uniform(0.0, 2.0 * math.pi)
+        way = (math.sin(tilt) * math.cos(turn), math.sin(tilt) * math.sin(turn), math.cos(tilt))
+        out = extrude(face, r.uniform(0.05, 2.0) * d / math.cos(tilt), dir=way)
+        kind = f"oblique extrusion {math.degrees(tilt):.0f}"
+    elif u < 0.5:
         out, kind = extrude(face, r.uniform(0.05, 2.0) * d), "extrusion"
     else:
         gap = 0.0 if r.random() < 0.3 else r.uniform(0.05, 1.0) * d

@@ -786,6 +786,24 @@ class SolidBoundary:
         hu, hv = 0.25 * window / su, 0.25 * window / sv
         return _local_min_2d(f, hu, hv, 1e-9 * max(hu, hv), 1e-3 * self.eps)
 
+    def faces_through(self, q: FloatArray) -> list[tuple[int, FloatArray]]:
+        """The faces a boundary point ``q`` (on an edge) lies on, with its parameters on
+        each: its projection on the face's surface within ``1e-7 diag``, inside the face."""
+        eps = 1e-7 * self.diag
+        lb = np.linalg.norm(
+            np.maximum(0.0, np.maximum(self._fbox[:, 0] - q, q - self._fbox[:, 1])), axis=1
+        )
+        out = []
+        for f in np.flatnonzero(lb <= eps):
+            p2 = self._sas[int(f)].ValueOfUV(_pnt(q), 1e-12 * self.diag)
+            on = _xyz(self._surf[int(f)].Value(p2.X(), p2.Y()))
+            if float(np.linalg.norm(on - q)) > eps:
+                continue
+            self._face_classifier.Perform(self.faces[int(f)], p2, 1e-9)
+            if self._face_classifier.State() != TopAbs_OUT:
+                out.append((int(f), np.array([p2.X(), p2.Y()])))
+        return out
+
     def local_bisector_distance(self, p: FloatArray, face: int, uv: ArrayLike) -> float:
         """Distance from ``p`` to the true medial points touching two of the faces near it
         (``face``, its foot's, near ``uv``, among them): the point where the distances to the two surfaces agree,
@@ -1191,10 +1209,19 @@ def soundness(
                     errs[k] = min(errs[k], sb.local_medial_distance(pts[k], int(face), uv, narrow))
                 if errs[k] > refine_above:  # a spoke between nearly parallel contacts
                     errs[k] = min(errs[k], sb.local_bisector_distance(pts[k], int(face), uv))
+                for f, f_uv in sb.faces_through(q):  # a foot on the face's edge: see below
+                    if f != face and errs[k] > refine_above:
+                        errs[k] = min(errs[k], sb.local_medial_distance(pts[k], f, f_uv, window))
             else:  # a foot on an edge (a reflex edge)
                 got = sb.local_medial_distance_at_edge(pts[k], q, window)
                 if got is not None:
                     errs[k] = min(e, got)
+                # or a smooth one: the medial points of feet on either face through it
+                # (an oblique prism's fillet, an ellipse in its cross-section, joins a side
+                # at a curvature-centre end: one contact, the ray error 70x the offset)
+                for f, f_uv in sb.faces_through(q):
+                    if errs[k] > refine_above:
+                        errs[k] = min(errs[k], sb.local_medial_distance(pts[k], f, f_uv, window))
     return errs
 
 

@@ -99,6 +99,19 @@ def _no_leftovers(folder: Path) -> None:
     assert hidden == [], f"staging files left behind: {hidden}"
 
 
+def test_an_oblique_prism_reports_its_caps_slant(tmp_path: Path) -> None:
+    out, rep = tmp_path / "oblique.mat.step", tmp_path / "oblique.json"
+    src = FACES.parent / "freecad" / "fc_oblique_extrusion.step"
+    proc = _cli(src, "-o", out, "--report", rep)
+    assert proc.returncode == 0, proc.stderr
+    (solid,) = json.loads(rep.read_text())["solids"]
+    assert solid["status"] == "ok" and solid["kind"] == "extrusion"
+    d, m = np.array(solid["direction"]), np.array(solid["cap_normal"])
+    assert 0.0 < float(d @ m) < 1.0 - 1e-6
+    assert solid["height"] == pytest.approx(solid["length"] * float(d @ m), rel=1e-9)
+    assert len(read_shapes(out)) == 1
+
+
 def test_box_step_report_and_radius_sidecar(tmp_path: Path) -> None:
     out, rep = tmp_path / "out" / "box.mat.step", tmp_path / "box.json"
     proc = _cli(SOLIDS / "box.step", "-o", out, "--report", rep)

@@ -436,8 +436,8 @@ def sheared_planar_face(
     for loop in pf.loops:
         out = []
         for piece in loop:
-            curve, scale = linear_image(piece.curve, a)
-            out.append(EdgePiece(curve, piece.t0 * scale, piece.t1 * scale, piece.edge_index))
+            curve, t0, t1 = linear_image(piece.curve, a, piece.t0, piece.t1)
+            out.append(EdgePiece(curve, t0, t1, piece.edge_index))
         loops.append(out)
     lo, hi = _bbox(display)
     stretch = float(np.linalg.norm(a, 2))
