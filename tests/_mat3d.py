@@ -574,6 +574,17 @@ def check(
     return rep
 
 
+def passes(solid: Any, label: str, n_complete: int = 100) -> Any:
+    """The MAT of ``solid``, asserted to pass every oracle of :func:`check`."""
+    import medialcad
+
+    result = medialcad.medial_axis(solid)
+    rep = check(solid, result, label, n_complete=n_complete)
+    print(rep.line())
+    assert not rep.failures(), f"{label}: " + "; ".join(rep.failures())
+    return result
+
+
 def _solid_euler(solid: Any) -> int | None:
     """The solid's Euler characteristic, or None where its boundary is pinched (a profile
     tangent to its axis at a point, revolved: the boundary's characteristic comes out odd,

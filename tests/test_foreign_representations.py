@@ -150,11 +150,7 @@ def _area(face: Any) -> float:
 
 
 def _check(solid: TopoDS_Shape, label: str) -> Any:
-    result = medialcad.medial_axis(solid)
-    rep = M.check(solid, result, label, n_complete=60)
-    print(rep.line())
-    assert not rep.failures(), f"{label}: " + "; ".join(rep.failures())
-    return result
+    return M.passes(solid, label, n_complete=60)
 
 
 @pytest.mark.parametrize("dialect", sorted(DIALECTS))

@@ -150,9 +150,12 @@ def _extrusion(reading: Extrusion, mat2d: Any, diag: float, tol: float) -> tuple
     )
     mid = None
     if level is not None:
+        # the plane z = h of the canonical frame, turned as the profile's frame is (for a
+        # right prism its own axes: the mid sheet's loops are nested in that orientation)
+        up = m if float(frame.zdir @ d) > 0 else -m
         u = frame.xdir - (frame.xdir @ m) * m
         u = u / np.linalg.norm(u)
-        mid = (origin + (h / cos) * d, u, np.cross(m, u))
+        mid = (to_model(np.array([[0.0, 0.0, h]]))[0], u, np.cross(up, u))
     return build_complex(
         patches,
         offsets,
