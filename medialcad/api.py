@@ -39,6 +39,18 @@ class MedialAxis2D:
     face: Any
     boundary: Boundary | None = None
 
+    def outline(self, per_piece: int = 120) -> list[np.ndarray]:
+        """The boundary the MAT was traced on, as polylines in :attr:`frame` (an oblique
+        prism's cross-section is not its display ``face`` re-read: that face's own
+        frame is turned)."""
+        if self.boundary is None:
+            from medialcad.occ.face2d import planar_face
+
+            pieces = [p for loop in planar_face(self.face).loops for p in loop]
+        else:
+            pieces = [e.piece for e in self.boundary.elements if e.piece is not None]
+        return [p.curve.point(np.linspace(p.t0, p.t1, per_piece)) for p in pieces]
+
     @property
     def nodes(self) -> tuple[Node, ...]:
         return self.graph.nodes

@@ -407,6 +407,8 @@ def _solid_line(entry: dict[str, Any], count: int) -> str:
     if entry["kind"] == "extrusion":
         d = ", ".join(f"{x:.4g}" for x in entry["direction"])
         what = f"extrusion along ({d}), length {entry['length']:.6g}"
+        if "cap_normal" in entry:  # an oblique prism
+            what += f" (oblique: caps {entry['height']:.6g} apart)"
     else:
         what = f"revolution through {math.degrees(entry['angle']):.6g} deg"
     wall = ""

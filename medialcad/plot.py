@@ -24,15 +24,9 @@ def plot_medial_axis_2d(
     import matplotlib.pyplot as plt
     from matplotlib.collections import LineCollection
 
-    from medialcad.occ.face2d import planar_face
-
-    pf = planar_face(mat.face)
     fig, ax = plt.subplots(figsize=(7, 7))
-    for loop in pf.loops:
-        for piece in loop:
-            t = np.linspace(piece.t0, piece.t1, 200)
-            xy = piece.curve.point(t)
-            ax.plot(xy[:, 0], xy[:, 1], color="black", lw=1.2)
+    for xy in mat.outline(200):
+        ax.plot(xy[:, 0], xy[:, 1], color="black", lw=1.2)
     segs: list[np.ndarray] = []
     vals: list[float] = []
     for b in mat.branches:

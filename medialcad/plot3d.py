@@ -435,13 +435,8 @@ def draw_profile(ax: Any, mat: Any, *, norm: Any = None, disks: int = 8) -> Any:
     from matplotlib.colors import Normalize
     from matplotlib.patches import Circle
 
-    from medialcad.occ.face2d import planar_face
-
-    pf = planar_face(mat.face)
-    for loop in pf.loops:
-        for piece in loop:
-            xy = piece.curve.point(np.linspace(piece.t0, piece.t1, 120))
-            ax.plot(xy[:, 0], xy[:, 1], color="black", lw=1.0)
+    for xy in mat.outline(120):
+        ax.plot(xy[:, 0], xy[:, 1], color="black", lw=1.0)
     segs: list[FloatArray] = []
     vals: list[FloatArray] = []
     for b in mat.branches:

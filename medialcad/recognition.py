@@ -7,7 +7,9 @@ Canonical frames (THEORY.md):
 
 - extrusion: the profile lies in ``z = 0`` of :attr:`Extrusion.frame` and the solid is
   ``profile x [0, length]`` along ``frame.zdir`` (= :attr:`Extrusion.direction`); an
-  oblique prism's caps lie across the direction at a slant (:attr:`Extrusion.cap_normal`);
+  oblique prism's caps lie across the direction at a slant (:attr:`Extrusion.cap_normal`):
+  the solid is the points ``x + t d`` of the profile's plane's lines along ``d`` between
+  the caps' planes, for ``x`` in the profile (its cross-section);
 - revolution: the profile lies in the half-plane ``x >= 0`` of the frame's ``xy``-plane
   and the solid is swept by rotating it about ``frame.ydir`` (= the axis direction, right
   hand) from 0 to :attr:`Revolution.angle`.
@@ -47,7 +49,8 @@ class Extrusion:
         profile: the exact planar profile face (``TopoDS_Face``) in model space: a cap of
             the solid, or the cap faces merged when the cap is split. For an oblique
             prism, its cross-section across ``direction`` through ``frame.origin`` (the
-            cap projected along ``direction``: exact, its curves as B-splines).
+            cap projected along ``direction``), for drawing: OCC's conversion
+            approximates offset curves in it; the MAT maps ``cap``'s exact curves.
         frame: maps canonical coordinates (profile in ``z = 0``, extrusion along ``+z``)
             to model space.
         tolerance: the largest deviation from an exact extrusion measured on the B-rep

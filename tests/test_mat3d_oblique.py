@@ -98,27 +98,45 @@ def test_freecads_oblique_prism_is_read_and_passes_the_oracles() -> None:
 # --------------------------------------------------------------------------- closed form
 
 
-@pytest.mark.parametrize("s", [1.0, 3.0, -2.5])
-def test_thin_sheared_box_has_the_closed_form_mid_sheet(s: float) -> None:
+def test_a_box_sheared_in_one_plane_keeps_its_right_reading() -> None:
+    """Swept along ``(s, 0, h)`` the sheared box is also a right prism along ``y`` (of a
+    parallelogram): the right reading is preferred."""
+    rec = medialcad.recognize(oblique_prism(F.rectangle(2.0, 1.0), (1.5, 0.0, 1.0)))
+    assert rec.cap_normal is None
+    assert abs(abs(rec.direction[1]) - 1.0) < 1e-9
+
+
+SHEARS = [(1.0, 0.5), (3.0, -2.0), (-2.5, 1.5)]
+
+
+@pytest.mark.parametrize(("s", "t"), SHEARS)
+def test_thin_sheared_box_has_the_closed_form_mid_sheet(s: float, t: float) -> None:
+    """A box ``a x b`` swept along ``(s, t, h)``, ``h`` the smallest width: no right
+    reading; the mid sheet is the rectangle of the plane ``z = h/2`` at in-plane
+    distance ``(h/2) / sin`` from each side's trace (``sin`` its slope to the caps):
+    ``(a - sqrt(h^2 + s^2)) (b - sqrt(h^2 + t^2))``, and ``rmax = h/2``."""
     a, b, h = 10.0, 6.0, 1.0
-    solid = oblique_prism(F.rectangle(0.5 * a, 0.5 * b), (s, 0.0, h))  # (half-widths)
-    result = _passes(solid, f"sheared box s={s}")
-    cos = h / math.hypot(s, h)
+    solid = oblique_prism(F.rectangle(0.5 * a, 0.5 * b), (s, t, h))  # (half-widths)
+    assert medialcad.recognize(solid).cap_normal is not None
+    result = _passes(solid, f"sheared box {s}, {t}")
     eps = 1e-6 * 12.0
     groups = M.planes_and_areas(result, eps)  # every sheet is planar
     mid = [g for g in groups if abs(abs(g[0][2]) - 1.0) < 1e-6 and abs(abs(g[1]) - 0.5 * h) < eps]
     assert len(mid) == 1, groups
-    expected = (a * cos - h) * (b - h) / cos
+    expected = (a - math.hypot(h, s)) * (b - math.hypot(h, t))
     assert mid[0][2] == pytest.approx(expected, rel=1e-6)
     assert result.rmax == pytest.approx(0.5 * h, rel=1e-9)
 
 
 def test_tall_sheared_box_has_the_cross_sections_radius() -> None:
-    a, b, s, h = 4.0, 3.0, 2.0, 8.0
-    solid = oblique_prism(F.rectangle(0.5 * a, 0.5 * b), (s, 0.0, h))
+    """Tall: the largest ball lies between the closer pair of parallel sides, ``a h /
+    sqrt(h^2 + s^2)`` and ``b h / sqrt(h^2 + t^2)`` apart."""
+    a, b, s, t, h = 4.0, 3.0, 2.0, -1.0, 8.0
+    solid = oblique_prism(F.rectangle(0.5 * a, 0.5 * b), (s, t, h))
+    assert medialcad.recognize(solid).cap_normal is not None
     result = _passes(solid, "tall sheared box")
-    cos = h / math.hypot(s, h)
-    assert result.rmax == pytest.approx(0.5 * min(a * cos, b), rel=1e-7)
+    widths = (a * h / math.hypot(h, s), b * h / math.hypot(h, t))
+    assert result.rmax == pytest.approx(0.5 * min(widths), rel=1e-7)
 
 
 # --------------------------------------------------------------------------- oracles

@@ -4,19 +4,21 @@ Every face is sampled once (points and outward normals on a grid of its paramete
 domain, its vertices, its surface type and axis if it has one). A candidate reading is
 then checked face by face with numpy:
 
-- **extrusion along d**: every face is either a plane with normal ``+-d`` lying in one of
-  two parallel planes (the caps), or a *general cylinder* along ``d`` (its normal is
-  perpendicular to ``d`` everywhere: planes, cylinders, surfaces of linear extrusion,
-  ruled B-splines all pass). Side vertices lie between the caps.
+- **extrusion along d**: every face is either a plane lying in one of two parallel
+  planes (the caps: normal ``+-d`` for a right prism, one slanted normal ``m`` for an
+  oblique one), or a *general cylinder* along ``d`` (its normal is perpendicular to
+  ``d`` everywhere: planes, cylinders, surfaces of linear extrusion, ruled B-splines all
+  pass). Side vertices lie between the caps.
 - **revolution about (a, d)**: every face has its normal in the meridian plane at every
   sample (``n . (d x (p - a)) = 0``: cylinders, cones, spheres, tori, planes
   perpendicular to the axis, surfaces of revolution, B-splines that are in fact
   revolutions) or is a plane containing the axis (a cap of a partial revolution).
 
 Candidates come from the surfaces (plane normals, cylinder/cone/torus/revolution axes,
-extrusion directions, and for free-form faces the line meeting all normal lines, fitted
-in Plücker coordinates). A final volume check (``V = A L``, Pappus ``V = angle A xbar``)
-guards against a misread.
+extrusion directions, the crossings of the largest planes' normals for oblique polygonal
+prisms, and for free-form faces the line meeting all normal lines, fitted in Plücker
+coordinates). A final volume check (``V = A H``, cap area times the caps' distance;
+Pappus ``V = angle A xbar``) guards against a misread.
 """
 
 from __future__ import annotations
