@@ -8,7 +8,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["Frame"]
+__all__ = ["Frame", "projection_along"]
 
 FloatArray = NDArray[np.float64]
 
@@ -42,3 +42,11 @@ class Frame:
     def height(self, pts: ArrayLike) -> FloatArray:
         """Signed distance of model points from the plane."""
         return np.asarray((np.asarray(pts, dtype=float) - self.origin) @ self.zdir)
+
+
+def projection_along(d: FloatArray, m: FloatArray) -> FloatArray:
+    """The linear map ``x -> x - (d.x) d + (m.x) d`` (3 x 3): on the plane with unit
+    normal ``m`` it is the projection along the unit ``d`` onto the plane across ``d``
+    (an oblique prism's cap onto its cross-section); invertible, its determinant is
+    ``m.d``."""
+    return np.asarray(np.eye(3) + np.outer(d, m - d))

@@ -218,8 +218,7 @@ class AffineCurve(Curve):
 
     @property
     def period(self) -> float | None:
-        if isinstance(self.inner, (CircleCurve, EllipseCurve)):
-            return 2.0 * np.pi
+        """The inner curve's period (an offset of a whole circle or closed B-spline)."""
         return getattr(self.inner, "period", None)
 
     def derivs(self, t: ArrayLike) -> Derivs:

@@ -48,7 +48,7 @@ from medialcad.errors import (
     SelfIntersectingBoundaryError,
     UnsupportedGeometryError,
 )
-from medialcad.frame import Frame
+from medialcad.frame import Frame, projection_along
 from medialcad.mat2d.boundary import EdgePiece
 from medialcad.mat2d.curves import (
     CircleCurve,
@@ -423,7 +423,7 @@ def sheared_planar_face(
     of the cap's exact curves maps to an exact curve (:func:`linear_image`); ``display``
     is the same section as an OCC face (its curves converted, for drawing)."""
     pf = planar_face(cap)
-    lin = np.eye(3) + np.outer(d, m - d)  # the projection on the cap's plane
+    lin = projection_along(d, m)
     o_q = origin + lin @ (pf.frame.origin - origin)
     mx, my = lin @ pf.frame.xdir, lin @ pf.frame.ydir
     x_q = mx / np.linalg.norm(mx)

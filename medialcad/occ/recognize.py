@@ -72,7 +72,7 @@ from medialcad.errors import (
     NotExtrusionOrRevolutionError,
     OCCError,
 )
-from medialcad.frame import Frame
+from medialcad.frame import Frame, projection_along
 from medialcad.occ.io import is_occ_exception, occ_guard
 from medialcad.occ.meridian import exact_meridian, face_of_edges
 from medialcad.occ.shapes import as_topods, compound, edges, faces, solids_or_shells
@@ -373,11 +373,10 @@ def _sheared_profile(
     """The oblique prism's cross-section across ``d`` through ``origin``, as an OCC
     face (for drawing; the MAT maps the cap's exact curves itself,
     :func:`medialcad.occ.face2d.sheared_planar_face`): the cap ``profile`` (in the plane
-    through ``origin`` with normal ``m``) projected along ``d``. The affine map
-    ``x -> x - (d.x) d + (m.x) d`` (about ``origin``) is that projection on the cap's
-    plane and invertible (its determinant is ``m.d``); OCC converts the curves to
-    B-splines to map them (approximating offset curves)."""
-    lin = np.eye(3) + np.outer(d, m - d)
+    through ``origin`` with normal ``m``) projected along ``d``
+    (:func:`medialcad.frame.projection_along`, about ``origin``); OCC converts the
+    curves to B-splines to map them (approximating offset curves)."""
+    lin = projection_along(d, m)
     shift = origin - lin @ origin
     g = gp_GTrsf()
     for i in range(3):
