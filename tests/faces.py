@@ -14,7 +14,7 @@ import json
 import math
 import os
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -496,15 +496,27 @@ def _fillets(
 def filleted_polygon(pts: ArrayLike, radii: Sequence[float]) -> TopoDS_Face:
     """A simple polygon whose vertex ``i`` is rounded with a tangent arc of ``radii[i]``
     (0: sharp). Convex and reflex vertices alike. Raises ValueError if fillets overlap."""
-    fl = _fillets(pts, radii)
+
+    def arc(a: FloatArray, b: FloatArray, centre: FloatArray, r: float, turn: float) -> cq.Edge:
+        bis = (a + b) / 2 - centre
+        return _arc(a, centre + r * bis / np.linalg.norm(bis), b)
+
+    return _rounded_face(_fillets(pts, radii), arc)
+
+
+def _rounded_face(
+    fl: list[tuple[FloatArray, FloatArray, FloatArray | None, float, float]],
+    arc: Callable[[FloatArray, FloatArray, FloatArray, float, float], cq.Edge],
+) -> TopoDS_Face:
+    """The face of :func:`_fillets`' corners: lines between them, ``arc(start, end,
+    centre, radius, turn)`` at each rounded one."""
     edges = []
     for i in range(len(fl)):
         j = (i + 1) % len(fl)
         edges.append(_line(fl[i][1], fl[j][0]))
-        a, b, centre, r, _ = fl[j]
+        a, b, centre, r, turn = fl[j]
         if centre is not None:
-            bis = (a + b) / 2 - centre
-            edges.append(_arc(a, centre + r * bis / np.linalg.norm(bis), b))
+            edges.append(arc(a, b, centre, r, turn))
     return _face(cq.Wire.assembleEdges(edges))
 
 
@@ -520,19 +532,16 @@ def sheared_filleted_polygon(
     u, sv, vt = np.linalg.svd(a_m)
     if np.linalg.det(u) < 0:  # a rotation, so the ellipse turns as the circle did
         u[:, 1], vt[1] = -u[:, 1], -vt[1]
+
+    def arc(a: FloatArray, b: FloatArray, centre: FloatArray, r: float, turn: float) -> cq.Edge:
+        c = a_m @ centre
+        frame = gp_Ax2(gp_Pnt(c[0], c[1], 0.0), gp_Dir(0, 0, 1), gp_Dir(u[0, 0], u[1, 0], 0))
+        ell = gp_Elips(frame, r * sv[0], r * sv[1])
+        made = GC_MakeArcOfEllipse(ell, gp_Pnt(a[0], a[1], 0), gp_Pnt(b[0], b[1], 0), turn > 0)
+        return cq.Edge(BRepBuilderAPI_MakeEdge(made.Value()).Edge())
+
     fl = [(a_m @ a, a_m @ b, c, r, turn) for a, b, c, r, turn in _fillets(pts, radii)]
-    edges = []
-    for i in range(len(fl)):
-        j = (i + 1) % len(fl)
-        edges.append(_line(fl[i][1], fl[j][0]))
-        a, b, centre, r, turn = fl[j]
-        if centre is not None:
-            c = a_m @ centre
-            frame = gp_Ax2(gp_Pnt(c[0], c[1], 0.0), gp_Dir(0, 0, 1), gp_Dir(u[0, 0], u[1, 0], 0))
-            ell = gp_Elips(frame, r * sv[0], r * sv[1])
-            arc = GC_MakeArcOfEllipse(ell, gp_Pnt(a[0], a[1], 0), gp_Pnt(b[0], b[1], 0), turn > 0)
-            edges.append(cq.Edge(BRepBuilderAPI_MakeEdge(arc.Value()).Edge()))
-    return _face(cq.Wire.assembleEdges(edges))
+    return _rounded_face(fl, arc)
 
 
 def _v(p: FloatArray) -> cq.Vector:
