@@ -170,9 +170,17 @@ def test_random_line_arc_fillet_mix(face: Any, seed: int) -> None:
 
 
 # about 2 % of these draws are refused as traced wrong (an elliptic fillet holding its
-# ellipse's vertex, next to lines: the xfail below); CI draws a fifth as many, the longer
-# run (scripts/fuzz.sh) the full count
-@settings(HYPO, max_examples=max(2, HYPO.max_examples // 5))
+# ellipse's vertex, next to lines: the xfail below); derandomized (CI) a fifth as many
+# are drawn, fresh (the longer run, scripts/fuzz.sh) the full count
+HYPO_SHEARED = settings(
+    HYPO,
+    max_examples=HYPO.max_examples
+    if os.environ.get("MEDIALCAD_HYPOTHESIS_RANDOM")
+    else max(2, HYPO.max_examples // 5),
+)
+
+
+@HYPO_SHEARED
 @given(face=F.sheared_rounded_polygon(), seed=st.integers(0, 2**16))
 def test_random_sheared_rounded_polygon(face: Any, seed: int) -> None:
     check_with_oracles(
@@ -181,7 +189,7 @@ def test_random_sheared_rounded_polygon(face: Any, seed: int) -> None:
 
 
 @pytest.mark.xfail(
-    strict=True,
+    strict=False,
     raises=medialcad.errors.ComputationError,
     reason="known: refused as traced wrong (docs/fuzzing.md, twenty-third session)",
 )
