@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -18,9 +18,6 @@ from medialcad.errors import (
 from medialcad.frame import Frame
 from medialcad.mat2d.boundary import Boundary, build_boundary
 from medialcad.mat2d.graph import Branch, MedialGraph, Node, NodeKind
-
-if TYPE_CHECKING:
-    from medialcad.occ.face2d import PlanarFace
 
 __all__ = ["ANGLE_TOL", "MedialAxis2D", "medial_axis_2d"]
 
@@ -147,7 +144,7 @@ def medial_axis_2d(face: Any, tol: float | None = None) -> MedialAxis2D:
     return medial_axis_of_planar(planar_face(face), tol_abs)
 
 
-def medial_axis_of_planar(pf: PlanarFace, tol: float | None) -> MedialAxis2D:
+def medial_axis_of_planar(pf: Any, tol: float | None) -> MedialAxis2D:
     """:func:`medial_axis_2d` of a face already read into exact curves
     (a :class:`medialcad.occ.face2d.PlanarFace`)."""
     from medialcad.mat2d.trace import TraceSettings, trace_medial_graph

@@ -80,17 +80,11 @@ class Extrusion:
     kind = "extrusion"
 
     @property
-    def slant_cos(self) -> float:
-        """Cosine of the angle between ``direction`` and the caps' normal (1 for a
-        right prism)."""
-        if self.cap_normal is None:
-            return 1.0
-        return float(self.cap_normal @ self.direction)
-
-    @property
     def height(self) -> float:
         """Distance between the caps' planes (``length`` for a right prism)."""
-        return float(self.length * self.slant_cos)
+        if self.cap_normal is None:
+            return float(self.length)
+        return float(self.length * (self.cap_normal @ self.direction))
 
 
 @dataclass(frozen=True)

@@ -2,8 +2,8 @@
 # The longer fuzzing run (README, "Fuzzing"; docs/fuzzing.md): fresh random faces,
 # extrusions and revolutions from the hypothesis strategies, judged by the oracles.
 #   bash scripts/fuzz.sh [EXAMPLES_2D] [EXAMPLES_3D]
-# EXAMPLES_2D per 2D strategy (6 strategies and a fifth as many spline loops, default 500:
-# 3,100 faces), EXAMPLES_3D per 3D
+# EXAMPLES_2D per 2D strategy (5 strategies and a fifth as many spline loops, default 500:
+# 2,600 faces), EXAMPLES_3D per 3D
 # strategy (5 extrusion and 5 revolution strategies, pie slices among them, default 20:
 # 200 solids).
 # Unlike CI, a failing example does not stop its strategy: every example is logged as

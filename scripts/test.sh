@@ -8,7 +8,7 @@ bash scripts/system_deps.sh
 
 export MPLBACKEND=Agg
 # random examples per hypothesis strategy (the suite default is 6 faces and 2 solids; more in
-# CI: 5 x 50 faces, 10 spline loops, 10 sheared rounds and 10 x 5 solids, 320 examples)
+# CI: 5 x 50 faces, 10 spline loops and 10 x 5 solids, 310 examples)
 export MEDIALCAD_HYPOTHESIS_EXAMPLES="${MEDIALCAD_HYPOTHESIS_EXAMPLES:-50}"
 export MEDIALCAD_HYPOTHESIS_EXAMPLES_3D="${MEDIALCAD_HYPOTHESIS_EXAMPLES_3D:-5}"
 

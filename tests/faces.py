@@ -14,7 +14,7 @@ import json
 import math
 import os
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -28,8 +28,7 @@ from OCP.BinTools import BinTools
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_Transform
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepTools import BRepTools
-from OCP.GC import GC_MakeArcOfEllipse
-from OCP.gp import gp_Ax2, gp_Dir, gp_Elips, gp_Pnt, gp_Trsf
+from OCP.gp import gp_Trsf
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
 __all__ = [
@@ -458,18 +457,14 @@ def nearly_symmetric_star(skew: float) -> TopoDS_Face:
     return polygon(pts)
 
 
-def _fillets(
-    pts: ArrayLike, radii: Sequence[float]
-) -> list[tuple[FloatArray, FloatArray, FloatArray | None, float, float]]:
-    """Per vertex of a simple polygon (made counter-clockwise) rounded with tangent arcs:
-    ``(start, end, centre, radius, turn)``, the tangent points on its incoming and
-    outgoing edges (the vertex itself and no centre when sharp). Raises ValueError if
-    fillets overlap."""
+def filleted_polygon(pts: ArrayLike, radii: Sequence[float]) -> TopoDS_Face:
+    """A simple polygon whose vertex ``i`` is rounded with a tangent arc of ``radii[i]``
+    (0: sharp). Convex and reflex vertices alike. Raises ValueError if fillets overlap."""
     p = np.asarray(pts, dtype=float)
     if _signed_area(p) < 0:
         p, radii = p[::-1], list(radii)[::-1]
     n = len(p)
-    out: list[tuple[FloatArray, FloatArray, FloatArray | None, float, float]] = []
+    starts, ends, mids = [], [], []  # per vertex: tangent point on incoming edge, outgoing, arc mid
     for i in range(n):
         v, prev, nxt = p[i], p[i - 1], p[(i + 1) % n]
         r = float(radii[i])
@@ -479,69 +474,23 @@ def _fillets(
             float(d_in[0] * d_out[1] - d_in[1] * d_out[0]), float(d_in @ d_out)
         )  # >0: convex (CCW)
         if r <= 0 or abs(turn) < 1e-9:
-            out.append((v, v, None, 0.0, turn))
+            starts.append(v), ends.append(v), mids.append(None)
             continue
         t = r * math.tan(abs(turn) / 2)
         a, b = v - t * d_in, v + t * d_out
         nrm = np.array([-d_in[1], d_in[0]]) * math.copysign(1.0, turn)  # towards the centre
-        out.append((a, b, a + r * nrm, r, turn))
+        centre = a + r * nrm
+        bis = (v - centre) / np.linalg.norm(v - centre)
+        starts.append(a), ends.append(b), mids.append(centre + r * bis)
+    edges = []
     for i in range(n):
         j = (i + 1) % n
-        gap = out[j][0] - out[i][1]
-        if np.linalg.norm(gap) < 1e-9 or gap @ (p[j] - p[i]) <= 0:
+        if np.linalg.norm(starts[j] - ends[i]) < 1e-9 or (starts[j] - ends[i]) @ (p[j] - p[i]) <= 0:
             raise ValueError("fillets overlap")
-    return out
-
-
-def filleted_polygon(pts: ArrayLike, radii: Sequence[float]) -> TopoDS_Face:
-    """A simple polygon whose vertex ``i`` is rounded with a tangent arc of ``radii[i]``
-    (0: sharp). Convex and reflex vertices alike. Raises ValueError if fillets overlap."""
-
-    def arc(a: FloatArray, b: FloatArray, centre: FloatArray, r: float, turn: float) -> cq.Edge:
-        bis = (a + b) / 2 - centre
-        return _arc(a, centre + r * bis / np.linalg.norm(bis), b)
-
-    return _rounded_face(_fillets(pts, radii), arc)
-
-
-def _rounded_face(
-    fl: list[tuple[FloatArray, FloatArray, FloatArray | None, float, float]],
-    arc: Callable[[FloatArray, FloatArray, FloatArray, float, float], cq.Edge],
-) -> TopoDS_Face:
-    """The face of :func:`_fillets`' corners: lines between them, ``arc(start, end,
-    centre, radius, turn)`` at each rounded one."""
-    edges = []
-    for i in range(len(fl)):
-        j = (i + 1) % len(fl)
-        edges.append(_line(fl[i][1], fl[j][0]))
-        a, b, centre, r, turn = fl[j]
-        if centre is not None:
-            edges.append(arc(a, b, centre, r, turn))
+        edges.append(_line(ends[i], starts[j]))
+        if mids[j] is not None:
+            edges.append(_arc(starts[j], mids[j], ends[j]))
     return _face(cq.Wire.assembleEdges(edges))
-
-
-def sheared_filleted_polygon(
-    pts: ArrayLike, radii: Sequence[float], matrix: ArrayLike
-) -> TopoDS_Face:
-    """:func:`filleted_polygon` under the linear map ``matrix`` (2 x 2, det > 0), exact:
-    its lines stay lines, its arcs become ellipse arcs tangent to them (built on their
-    principal axes), whose curvature is greatest at a joint unless the arc spans a
-    vertex of its ellipse."""
-    a_m = np.asarray(matrix, dtype=float)
-    assert np.linalg.det(a_m) > 0
-    u, sv, vt = np.linalg.svd(a_m)
-    if np.linalg.det(u) < 0:  # a rotation, so the ellipse turns as the circle did
-        u[:, 1], vt[1] = -u[:, 1], -vt[1]
-
-    def arc(a: FloatArray, b: FloatArray, centre: FloatArray, r: float, turn: float) -> cq.Edge:
-        c = a_m @ centre
-        frame = gp_Ax2(gp_Pnt(c[0], c[1], 0.0), gp_Dir(0, 0, 1), gp_Dir(u[0, 0], u[1, 0], 0))
-        ell = gp_Elips(frame, r * sv[0], r * sv[1])
-        made = GC_MakeArcOfEllipse(ell, gp_Pnt(a[0], a[1], 0), gp_Pnt(b[0], b[1], 0), turn > 0)
-        return cq.Edge(BRepBuilderAPI_MakeEdge(made.Value()).Edge())
-
-    fl = [(a_m @ a, a_m @ b, c, r, turn) for a, b, c, r, turn in _fillets(pts, radii)]
-    return _rounded_face(fl, arc)
 
 
 def _v(p: FloatArray) -> cq.Vector:
@@ -628,28 +577,6 @@ def line_arc_fillet_mix(draw: st.DrawFn) -> TopoDS_Face:
     assume(any(radii))
     try:
         face = filleted_polygon(pts, radii)
-    except (ValueError, Exception):  # overlapping fillets, OCC refusing the wire
-        assume(False)
-        raise
-    assume(is_valid(face))
-    return face
-
-
-@st.composite
-def sheared_rounded_polygon(draw: st.DrawFn) -> TopoDS_Face:
-    """A polygon of 5-12 vertices on a ring (radii 2.7-3, no gap over 140 degrees:
-    mostly obtuse corners) with small fillets (0.02-0.1) at every vertex, under a random
-    shear and stretch (an oblique prism's cross-section): elliptic fillets tangent to
-    lines, each curving most at one of its joints, where the lines' bisector bends off
-    to the centre of curvature."""
-    n = draw(st.integers(5, 12))
-    t = np.sort(_star_shaped_radii(draw, n, 0.0, 2 * np.pi))
-    assume(np.max(np.diff(np.r_[t, t[0] + 2 * np.pi])) <= np.radians(140.0))
-    r = _star_shaped_radii(draw, n, 2.7, 3.0)
-    radii = _star_shaped_radii(draw, n, 0.02, 0.1)
-    shear = np.array([[1.0, draw(st.floats(-0.6, 0.6))], [0.0, draw(st.floats(0.7, 1.3))]])
-    try:
-        face = sheared_filleted_polygon(np.c_[r * np.cos(t), r * np.sin(t)], radii, shear)
     except (ValueError, Exception):  # overlapping fillets, OCC refusing the wire
         assume(False)
         raise

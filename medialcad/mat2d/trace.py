@@ -1675,7 +1675,7 @@ def _fit_check(tr: _Tracer, S: MapSamples, iv: _Interval) -> _FitCheck | None:
     )
     if key in tr.fit_ok:
         return None
-    if _straight(tr, S, iv):
+    if _straight(tr, S, iv.samples):
         tr.fit_ok.add(key)
         return None
     length = tr.L[iv.loop]
@@ -1723,33 +1723,15 @@ def _fit_check(tr: _Tracer, S: MapSamples, iv: _Interval) -> _FitCheck | None:
     return _FitCheck(key, iv.loop, spline, mids, lo[rows], width[rows], ua[rows], ub[rows], ends)
 
 
-def _straight(tr: _Tracer, S: MapSamples, iv: _Interval) -> bool:
-    """Whether every sample of a branch is equidistant from the same two lines and so
-    are its ends (convex corners, or branch points with a foot on each line): its
+def _straight(tr: _Tracer, S: MapSamples, smp: IntArray) -> bool:
+    """Whether every sample of a branch is equidistant from the same two lines: its
     centres lie on their bisector and the radius is linear along it, which the
-    interpolating spline reproduces exactly (nothing to check). (Not when a footpoint
-    passes over a tangent joint onto an arc between the last sample and the end: the
-    branch bends off the bisector to the centre of curvature of a fillet's end where
-    its curvature is greatest, a sheared round, 9e-5 of the diagonal off; that centre
-    can lie within the tolerance of the bisector while the bend does not.)"""
-    smp = iv.samples
+    interpolating spline reproduces exactly (nothing to check)."""
     own, other = S.element[smp], S.partner_element[smp]
     if np.any(own != own[0]) or np.any(other != other[0]) or np.any(S.is_self[smp]):
         return False
-    C = tr.cands
-    lines = (int(own[0]), int(other[0]))
-    if not (C.kind[lines[0]] == LINE and lines[1] >= 0 and C.kind[lines[1]] == LINE):
-        return False
-    for ev in (iv.start, iv.end):
-        if ev is None or ev.kind is NodeKind.CONVEX_VERTEX:
-            continue
-        if ev.kind is not NodeKind.BRANCH_POINT or not set(lines) <= {f[0] for f in ev.feet}:
-            return False
-        rows = C.pos[list(lines)]
-        dist = np.abs(np.einsum("kj,kj->k", ev.point - C.line_o[rows], C.line_nu[rows]))
-        if np.any(np.abs(dist - ev.radius) > 0.5 * tr.cfg.tol):
-            return False
-    return True
+    kind = tr.cands.kind
+    return bool(kind[own[0]] == LINE and other[0] >= 0 and kind[other[0]] == LINE)
 
 
 def _spline_miss(c: _FitCheck, centre: FloatArray, radius: FloatArray, ok: float) -> FloatArray:
@@ -1974,7 +1956,7 @@ def _assemble(
             if extent <= max(4 * tol, 0.5 * node.radius):
                 continue
         values = np.column_stack([pts, rad])
-        if len(iv.samples) and _straight(tr, S, iv):
+        if len(iv.samples) and _straight(tr, S, iv.samples):
             # collinear, radius linear along the line, chord-length parameters
             # proportional to arc length: the cubic through all the points is the line
             coeffs = (1 - _THIRDS) * values[0] + _THIRDS * values[-1]

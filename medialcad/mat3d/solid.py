@@ -113,7 +113,7 @@ def _shear_contraction(reading: Extrusion | Revolution) -> float:
     by at most ``sqrt(1 + sin) / cos``, its largest singular value; 1 otherwise."""
     if not isinstance(reading, Extrusion) or reading.cap_normal is None:
         return 1.0
-    cos = reading.slant_cos
+    cos = float(reading.cap_normal @ reading.direction)
     sin = math.sqrt(max(0.0, 1.0 - cos * cos))
     return cos / math.sqrt(1.0 + sin)
 
@@ -131,7 +131,7 @@ def _extrusion(reading: Extrusion, mat2d: Any, diag: float, tol: float) -> tuple
     H = reading.height
     d = reading.direction
     m = reading.cap_normal if reading.cap_normal is not None else d
-    cos = reading.slant_cos
+    cos = float(m @ d)
     origin = reading.frame.origin
     frame = mat2d.frame
     h = 0.5 * H

@@ -253,27 +253,27 @@ class _ExtrusionReading:
     bottom: list[_FaceData]
     deviation: float
     cap_normal: FloatArray  # unit, ``cap_normal @ direction > 0``; = direction if right
-    oblique: bool  # the caps slanted to the direction
+
+    @property
+    def oblique(self) -> bool:
+        return bool(np.any(self.cap_normal != self.direction))
 
 
-def _cap_normal(
-    data: list[_FaceData], d: FloatArray, ang_tol: float
-) -> tuple[FloatArray, bool] | None:
-    """The caps' common normal for sides along ``d`` and whether it is slanted to
-    ``d``: ``d`` itself when a plane lies across ``d`` (a right prism), else the normal
-    of the largest plane not along ``d`` (an oblique prism), oriented along ``d``;
-    ``None`` without such a plane."""
+def _cap_normal(data: list[_FaceData], d: FloatArray, ang_tol: float) -> FloatArray | None:
+    """The caps' common normal for sides along ``d``: ``d`` itself when a plane lies
+    across ``d`` (a right prism), else the normal of the largest plane not along ``d``
+    (an oblique prism), oriented along ``d``; ``None`` without such a plane."""
     across = [
         f for f in data if f.kind == "plane" and f.axis is not None and abs(f.axis[1] @ d) > ang_tol
     ]
     if not across:
         return None
     if any(abs(abs(float(f.axis[1] @ d)) - 1.0) < ang_tol**2 for f in across if f.axis is not None):
-        return d, False
+        return d
     big = max(across, key=lambda f: f.area)
     assert big.axis is not None
     m = _unit(big.axis[1])
-    return (m if float(m @ d) > 0 else -m), True
+    return m if float(m @ d) > 0 else -m
 
 
 def _check_extrusion(
@@ -282,10 +282,9 @@ def _check_extrusion(
     """Whether the solid is a prism along ``d``: every face either a side (all its
     normals across ``d``) or a planar cap, the caps in two parallel planes. The caps may
     lie obliquely to ``d`` (a profile swept along a slanted vector)."""
-    caps_normal = _cap_normal(data, d, ang_tol)
-    if caps_normal is None:
+    m = _cap_normal(data, d, ang_tol)
+    if m is None:
         return "no planar cap across the direction"
-    m, oblique = caps_normal
     caps: list[tuple[_FaceData, float]] = []
     sides: list[_FaceData] = []
     dev = 0.0
@@ -297,7 +296,7 @@ def _check_extrusion(
             return f"{_describe(f)} has no usable normal"
         c = float(np.abs(f.normals @ d).max())
         if c > ang_tol:
-            if not oblique:
+            if np.all(m == d):
                 return f"{_describe(f)} is neither parallel nor perpendicular to the direction"
             return f"{_describe(f)} is neither along the direction nor parallel to the caps"
         sides.append(f)
@@ -335,7 +334,7 @@ def _check_extrusion(
     area_t = sum(f.area for f in top)
     if abs(area_b - area_t) > 1e-6 * max(area_b, area_t) + lin_tol * math.sqrt(max(area_b, 1e-300)):
         return "the two caps differ in area"
-    return _ExtrusionReading(d, h0, h1, bottom, dev, m, oblique)
+    return _ExtrusionReading(d, h0, h1, bottom, dev, m)
 
 
 def _extrusion_candidates(data: list[_FaceData]) -> list[FloatArray]:
@@ -790,8 +789,8 @@ def _recognize_extrusion(
     volume: float,
     reasons: list[str],
 ) -> Extrusion | None:
+    best: tuple[tuple[bool, float], Extrusion] | None = None
     first_reason = None
-    found: list[tuple[bool, float, Extrusion]] = []  # (oblique, cap area, reading)
     for d in _extrusion_candidates(data):
         got = _check_extrusion(data, d, lin_tol, ang_tol)
         if isinstance(got, str):
@@ -807,37 +806,33 @@ def _recognize_extrusion(
         if abs(area * height - volume) > VOLUME_RTOL * volume:
             first_reason = first_reason or "not an extrusion (volume differs from area x length)"
             continue
-        m = got.cap_normal
+        m, oblique = got.cap_normal, got.oblique
         origin = centroid - (centroid @ m - got.h0) * m
         xdir = _perp(d)
         frame = Frame(origin, xdir, np.cross(d, xdir))
+        cap_normal, cap = None, None
+        if oblique:
+            try:
+                profile, cap = _sheared_profile(profile, origin, d, m), profile
+            except MedialCadError as err:
+                first_reason = first_reason or f"not an extrusion ({err})"
+                continue
+            cap_normal = m
         length = height / float(m @ d)
-        reading = Extrusion(d, length, profile, frame, max(got.deviation, 0.0))
-        if got.oblique:  # its cross-section (for drawing) is made for the one kept
-            reading = replace(reading, cap_normal=m, cap=profile)
-        found.append((got.oblique, area, reading))
-    while found:
+        reading = Extrusion(
+            d, length, profile, frame, max(got.deviation, 0.0), cap_normal=cap_normal, cap=cap
+        )
         # a right reading before an oblique one, then the largest cap
-        k = 0
-        for i, (oblique, area, _) in enumerate(found):
-            best_oblique, best_area, _ = found[k]
-            if best_oblique > oblique or (
-                best_oblique == oblique and area > best_area * (1 + 1e-9)
-            ):
-                k = i
-        reading = found.pop(k)[2]
-        if reading.cap_normal is None:
-            return reading
-        try:
-            shown = _sheared_profile(
-                reading.cap, reading.frame.origin, reading.direction, reading.cap_normal
-            )
-        except MedialCadError as err:
-            first_reason = first_reason or f"not an extrusion ({err})"
-            continue
-        return replace(reading, profile=shown)
-    reasons.append(first_reason or "not an extrusion (no candidate direction)")
-    return None
+        if (
+            best is None
+            or best[0][0] > oblique
+            or (best[0][0] == oblique and area > best[0][1] * (1 + 1e-9))
+        ):
+            best = ((oblique, area), reading)
+    if best is None:
+        reasons.append(first_reason or "not an extrusion (no candidate direction)")
+        return None
+    return best[1]
 
 
 def _recognize_revolution(
